@@ -1,0 +1,500 @@
+//! Command recording: dispatches with push descriptors, barriers, copies, per-pass timestamps
+//! and crash markers (the index of the pass last started is written to a host-visible buffer, so
+//! a lost device can be blamed on a named pass, as kajiya does).
+use crate::device::Device;
+use crate::error::{DeviceError, Result, VkContext};
+use crate::memory::{Buffer, Image, color_range};
+use crate::pipeline::{BindingKind, ComputePipeline};
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+
+/// A resource bound to a binding of a dispatch.
+#[derive(Debug, Clone, Copy)]
+pub enum Res<'a> {
+    Buffer(&'a Buffer),
+    Image(&'a Image),
+}
+
+impl<'a> From<&'a Buffer> for Res<'a> {
+    fn from(b: &'a Buffer) -> Self {
+        Res::Buffer(b)
+    }
+}
+impl<'a> From<&'a Image> for Res<'a> {
+    fn from(i: &'a Image) -> Self {
+        Res::Image(i)
+    }
+}
+
+/// Time spent in one named pass, from GPU timestamps.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassTime {
+    pub name: String,
+    pub ms: f64,
+}
+
+const MAX_PASSES: u32 = 64;
+
+/// One reusable command buffer with its fence, timestamp pool and crash-marker buffer.
+pub struct Recorder {
+    dev: Device,
+    pool: vk::CommandPool,
+    pub cmd: vk::CommandBuffer,
+    fence: vk::Fence,
+    queries: vk::QueryPool,
+    markers: Buffer,
+    passes: Vec<String>,
+    open_pass: Option<usize>,
+    recording: bool,
+}
+
+impl std::fmt::Debug for Recorder {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Recorder")
+            .field("passes", &self.passes)
+            .finish()
+    }
+}
+
+impl Recorder {
+    pub fn new(dev: &Device, name: &str) -> Result<Self> {
+        let d = dev.raw();
+        // SAFETY: valid create infos; destroyed in Drop.
+        unsafe {
+            let pool = d
+                .create_command_pool(
+                    &vk::CommandPoolCreateInfo::default()
+                        .queue_family_index(dev.queue_family())
+                        .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER),
+                    None,
+                )
+                .vk("vkCreateCommandPool")?;
+            let cmd = d
+                .allocate_command_buffers(
+                    &vk::CommandBufferAllocateInfo::default()
+                        .command_pool(pool)
+                        .level(vk::CommandBufferLevel::PRIMARY)
+                        .command_buffer_count(1),
+                )
+                .vk("vkAllocateCommandBuffers")?[0];
+            let fence = d
+                .create_fence(&vk::FenceCreateInfo::default(), None)
+                .vk("vkCreateFence")?;
+            let queries = d
+                .create_query_pool(
+                    &vk::QueryPoolCreateInfo::default()
+                        .query_type(vk::QueryType::TIMESTAMP)
+                        .query_count(MAX_PASSES * 2),
+                    None,
+                )
+                .vk("vkCreateQueryPool")?;
+            dev.set_name(pool, &format!("{name}.pool"));
+            dev.set_name(cmd, &format!("{name}.cmd"));
+            dev.set_name(fence, &format!("{name}.fence"));
+            dev.set_name(queries, &format!("{name}.timestamps"));
+            let markers = Buffer::new(
+                dev,
+                &format!("{name}.crash_marker"),
+                4,
+                MemoryLocation::GpuToCpu,
+            )?;
+            Ok(Self {
+                dev: dev.clone(),
+                pool,
+                cmd,
+                fence,
+                queries,
+                markers,
+                passes: Vec::new(),
+                open_pass: None,
+                recording: false,
+            })
+        }
+    }
+
+    /// Starts recording (resets the command buffer and timestamps).
+    pub fn begin(&mut self) -> Result<()> {
+        let d = self.dev.raw();
+        // SAFETY: the previous submission was waited for in `submit_and_wait`.
+        unsafe {
+            d.reset_command_buffer(self.cmd, vk::CommandBufferResetFlags::empty())
+                .vk("vkResetCommandBuffer")?;
+            d.begin_command_buffer(
+                self.cmd,
+                &vk::CommandBufferBeginInfo::default()
+                    .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
+            )
+            .vk("vkBeginCommandBuffer")?;
+            d.cmd_reset_query_pool(self.cmd, self.queries, 0, MAX_PASSES * 2);
+        }
+        self.passes.clear();
+        self.open_pass = None;
+        self.recording = true;
+        Ok(())
+    }
+
+    fn check_recording(&self) -> Result<()> {
+        if self.recording {
+            Ok(())
+        } else {
+            Err(DeviceError::Usage("Recorder used before begin()".into()))
+        }
+    }
+
+    /// Opens a timed pass: a timestamp and a crash marker. Close it with [`Self::end_pass`].
+    pub fn begin_pass(&mut self, name: &str) -> Result<()> {
+        self.check_recording()?;
+        if self.open_pass.is_some() {
+            self.end_pass()?;
+        }
+        let i = self.passes.len() as u32;
+        if i >= MAX_PASSES {
+            return Err(DeviceError::Usage(format!(
+                "more than {MAX_PASSES} passes in one submission"
+            )));
+        }
+        self.passes.push(name.to_string());
+        self.open_pass = Some(i as usize);
+        let d = self.dev.raw();
+        // SAFETY: recording; the marker buffer is TRANSFER_DST.
+        unsafe {
+            d.cmd_fill_buffer(self.cmd, self.markers.raw, 0, 4, i + 1);
+            d.cmd_write_timestamp(
+                self.cmd,
+                vk::PipelineStageFlags::BOTTOM_OF_PIPE,
+                self.queries,
+                2 * i,
+            );
+        }
+        self.barrier();
+        Ok(())
+    }
+
+    /// Closes the open pass.
+    pub fn end_pass(&mut self) -> Result<()> {
+        let Some(i) = self.open_pass.take() else {
+            return Err(DeviceError::Usage("end_pass without begin_pass".into()));
+        };
+        // SAFETY: recording.
+        unsafe {
+            self.dev.raw().cmd_write_timestamp(
+                self.cmd,
+                vk::PipelineStageFlags::BOTTOM_OF_PIPE,
+                self.queries,
+                2 * i as u32 + 1,
+            );
+        }
+        Ok(())
+    }
+
+    /// A full memory barrier between everything before and after (passes are few and large).
+    pub fn barrier(&mut self) {
+        let mb = vk::MemoryBarrier::default()
+            .src_access_mask(vk::AccessFlags::MEMORY_WRITE)
+            .dst_access_mask(vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE);
+        // SAFETY: recording.
+        unsafe {
+            self.dev.raw().cmd_pipeline_barrier(
+                self.cmd,
+                vk::PipelineStageFlags::ALL_COMMANDS,
+                vk::PipelineStageFlags::ALL_COMMANDS,
+                vk::DependencyFlags::empty(),
+                &[mb],
+                &[],
+                &[],
+            );
+        }
+    }
+
+    /// Binds `resources` (in the pipeline's declared binding order), pushes constants and
+    /// dispatches `groups` workgroups, followed by a barrier.
+    pub fn dispatch(
+        &mut self,
+        pipeline: &ComputePipeline,
+        resources: &[Res<'_>],
+        push: &[u8],
+        groups: [u32; 3],
+    ) -> Result<()> {
+        self.check_recording()?;
+        let usage = |d: String| DeviceError::Usage(format!("dispatch of '{}': {d}", pipeline.name));
+        if resources.len() != pipeline.bindings.len() {
+            return Err(usage(format!(
+                "{} resources given, {} bindings declared",
+                resources.len(),
+                pipeline.bindings.len()
+            )));
+        }
+        if push.len() as u32 != pipeline.push_size {
+            return Err(usage(format!(
+                "{} push bytes, {} declared",
+                push.len(),
+                pipeline.push_size
+            )));
+        }
+        let max = self.dev.info().max_compute_work_group_count;
+        if groups.iter().zip(max).any(|(&g, m)| g > m) {
+            return Err(usage(format!(
+                "workgroup count {groups:?} over the device limit {max:?}"
+            )));
+        }
+        let mut buffer_infos = Vec::new();
+        let mut image_infos = Vec::new();
+        for (b, r) in pipeline.bindings.iter().zip(resources) {
+            match (b.kind, r) {
+                (BindingKind::StorageBuffer | BindingKind::UniformBuffer, Res::Buffer(buf)) => {
+                    buffer_infos.push(vk::DescriptorBufferInfo {
+                        buffer: buf.raw,
+                        offset: 0,
+                        range: vk::WHOLE_SIZE,
+                    });
+                }
+                (BindingKind::StorageImage, Res::Image(img)) => {
+                    image_infos.push(vk::DescriptorImageInfo {
+                        sampler: vk::Sampler::null(),
+                        image_view: img.view,
+                        image_layout: vk::ImageLayout::GENERAL,
+                    });
+                }
+                _ => {
+                    return Err(usage(format!(
+                        "binding {} ('{}') expects {:?}, got {r:?}",
+                        b.binding, b.name, b.kind
+                    )));
+                }
+            }
+        }
+        let (mut bi, mut ii) = (0, 0);
+        let writes: Vec<_> = pipeline
+            .bindings
+            .iter()
+            .map(|b| {
+                let w = vk::WriteDescriptorSet::default()
+                    .dst_binding(b.binding)
+                    .descriptor_type(b.kind.vk());
+                if b.kind == BindingKind::StorageImage {
+                    ii += 1;
+                    w.image_info(&image_infos[ii - 1..ii])
+                } else {
+                    bi += 1;
+                    w.buffer_info(&buffer_infos[bi - 1..bi])
+                }
+            })
+            .collect();
+        let d = self.dev.raw();
+        // SAFETY: recording; resources outlive the submission (callers wait before dropping).
+        unsafe {
+            d.cmd_bind_pipeline(self.cmd, vk::PipelineBindPoint::COMPUTE, pipeline.raw);
+            self.dev.shared.push_descriptor.cmd_push_descriptor_set(
+                self.cmd,
+                vk::PipelineBindPoint::COMPUTE,
+                pipeline.layout,
+                0,
+                &writes,
+            );
+            if !push.is_empty() {
+                d.cmd_push_constants(
+                    self.cmd,
+                    pipeline.layout,
+                    vk::ShaderStageFlags::COMPUTE,
+                    0,
+                    push,
+                );
+            }
+            d.cmd_dispatch(self.cmd, groups[0], groups[1], groups[2]);
+        }
+        self.barrier();
+        Ok(())
+    }
+
+    /// Copies `size` bytes (whole `src` when `None`) from `src` to `dst`.
+    pub fn copy_buffer(&mut self, src: &Buffer, dst: &Buffer, size: Option<u64>) -> Result<()> {
+        self.check_recording()?;
+        let size = size.unwrap_or(src.size.min(dst.size));
+        let region = vk::BufferCopy {
+            src_offset: 0,
+            dst_offset: 0,
+            size,
+        };
+        // SAFETY: recording; both buffers are TRANSFER capable.
+        unsafe {
+            self.dev
+                .raw()
+                .cmd_copy_buffer(self.cmd, src.raw, dst.raw, &[region])
+        };
+        self.barrier();
+        Ok(())
+    }
+
+    /// Fills a whole buffer with a repeated u32.
+    pub fn fill_buffer(&mut self, buf: &Buffer, value: u32) -> Result<()> {
+        self.check_recording()?;
+        // SAFETY: recording.
+        unsafe {
+            self.dev
+                .raw()
+                .cmd_fill_buffer(self.cmd, buf.raw, 0, vk::WHOLE_SIZE, value)
+        };
+        self.barrier();
+        Ok(())
+    }
+
+    /// Moves a fresh image from UNDEFINED to GENERAL (contents discarded).
+    pub fn init_image(&mut self, img: &Image) -> Result<()> {
+        self.check_recording()?;
+        let b = vk::ImageMemoryBarrier::default()
+            .image(img.raw)
+            .old_layout(vk::ImageLayout::UNDEFINED)
+            .new_layout(vk::ImageLayout::GENERAL)
+            .src_access_mask(vk::AccessFlags::empty())
+            .dst_access_mask(vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE)
+            .subresource_range(color_range());
+        // SAFETY: recording.
+        unsafe {
+            self.dev.raw().cmd_pipeline_barrier(
+                self.cmd,
+                vk::PipelineStageFlags::TOP_OF_PIPE,
+                vk::PipelineStageFlags::ALL_COMMANDS,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[b],
+            );
+        }
+        Ok(())
+    }
+
+    /// Copies an image (in GENERAL layout) into a buffer, tightly packed.
+    pub fn copy_image_to_buffer(&mut self, img: &Image, dst: &Buffer) -> Result<()> {
+        self.check_recording()?;
+        let region = vk::BufferImageCopy::default()
+            .image_subresource(vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: 1,
+            })
+            .image_extent(vk::Extent3D {
+                width: img.width,
+                height: img.height,
+                depth: 1,
+            });
+        // SAFETY: recording; image is in GENERAL.
+        unsafe {
+            self.dev.raw().cmd_copy_image_to_buffer(
+                self.cmd,
+                img.raw,
+                vk::ImageLayout::GENERAL,
+                dst.raw,
+                &[region],
+            );
+        }
+        self.barrier();
+        Ok(())
+    }
+
+    /// Ends recording, submits, waits, and returns the per-pass times.
+    pub fn submit_and_wait(&mut self) -> Result<Vec<PassTime>> {
+        self.check_recording()?;
+        if self.open_pass.is_some() {
+            self.end_pass()?;
+        }
+        self.recording = false;
+        let d = self.dev.raw();
+        let cmds = [self.cmd];
+        let submit = vk::SubmitInfo::default().command_buffers(&cmds);
+        // SAFETY: the command buffer is complete; the fence is unsignalled.
+        let run = unsafe {
+            d.end_command_buffer(self.cmd)
+                .vk("vkEndCommandBuffer")
+                .and_then(|_| {
+                    d.queue_submit(self.dev.queue(), &[submit], self.fence)
+                        .vk("vkQueueSubmit")
+                })
+                .and_then(|_| {
+                    d.wait_for_fences(&[self.fence], true, u64::MAX)
+                        .vk("vkWaitForFences")
+                })
+                .and_then(|_| d.reset_fences(&[self.fence]).vk("vkResetFences"))
+        };
+        if let Err(DeviceError::Vulkan { what, result }) = &run
+            && *result == vk::Result::ERROR_DEVICE_LOST
+        {
+            return Err(self.device_lost(what));
+        }
+        run?;
+        self.timings()
+    }
+
+    fn device_lost(&self, what: &str) -> DeviceError {
+        let marker = self
+            .markers
+            .read::<u32>()
+            .ok()
+            .and_then(|m| m.first().copied())
+            .unwrap_or(0);
+        let pass = match marker {
+            0 => "(before any pass)".to_string(),
+            m => self
+                .passes
+                .get(m as usize - 1)
+                .cloned()
+                .unwrap_or_else(|| format!("#{m}")),
+        };
+        DeviceError::DeviceLost {
+            pass,
+            what: what.to_string(),
+        }
+    }
+
+    fn timings(&self) -> Result<Vec<PassTime>> {
+        let n = self.passes.len();
+        if n == 0 {
+            return Ok(Vec::new());
+        }
+        let mut data = vec![0u64; 2 * n];
+        // SAFETY: all queries in range were written by the completed submission.
+        unsafe {
+            self.dev
+                .raw()
+                .get_query_pool_results(
+                    self.queries,
+                    0,
+                    &mut data,
+                    vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+                )
+                .vk("vkGetQueryPoolResults")?;
+        }
+        let info = self.dev.info();
+        let bits = info.timestamp_valid_bits;
+        let mask = if bits >= 64 {
+            u64::MAX
+        } else {
+            (1u64 << bits) - 1
+        };
+        let period = info.timestamp_period_ns as f64;
+        Ok(self
+            .passes
+            .iter()
+            .enumerate()
+            .map(|(i, name)| {
+                let ticks = (data[2 * i + 1] & mask).wrapping_sub(data[2 * i] & mask) & mask;
+                PassTime {
+                    name: name.clone(),
+                    ms: ticks as f64 * period * 1e-6,
+                }
+            })
+            .collect())
+    }
+}
+
+impl Drop for Recorder {
+    fn drop(&mut self) {
+        // SAFETY: submissions are always waited for; nothing is pending.
+        unsafe {
+            let d = self.dev.raw();
+            d.destroy_query_pool(self.queries, None);
+            d.destroy_fence(self.fence, None);
+            d.destroy_command_pool(self.pool, None);
+        }
+    }
+}

@@ -1,0 +1,101 @@
+//! The GPU test harness ("GLSL shader unit runs"): a device on lavapipe (or any Vulkan device)
+//! with the Khronos validation layer on; running a compute shader and reading results back;
+//! and a check on drop that validation reported nothing, so every GPU test fails on any message.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use blueshift_device::{
+    Binding, Buffer, ComputePipeline, Device, Instance, InstanceDesc, MemoryLocation, PassTime,
+    Recorder, Res,
+};
+
+#[cfg(test)]
+mod bindings;
+#[cfg(test)]
+mod headers;
+#[cfg(test)]
+mod rng;
+
+/// A validated device plus a recorder. Panics on drop if validation reported anything.
+pub struct Gpu {
+    instance: Instance,
+    pub dev: Option<Device>,
+    pub rec: Option<Recorder>,
+}
+
+impl Gpu {
+    /// Creates the device with validation on. Panics with the device layer's message (which
+    /// names the apt package to install) when there is no Vulkan device or no validation layer.
+    pub fn new() -> Self {
+        let instance = Instance::new(&InstanceDesc {
+            validation: true,
+            extensions: vec![],
+        })
+        .unwrap_or_else(|e| panic!("GPU tests need Vulkan with validation: {e}"));
+        let dev = Device::new(&instance, &Default::default())
+            .unwrap_or_else(|e| panic!("GPU tests need a Vulkan device: {e}"));
+        let rec = Recorder::new(&dev, "test").expect("recorder");
+        Self {
+            instance,
+            dev: Some(dev),
+            rec: Some(rec),
+        }
+    }
+
+    pub fn dev(&self) -> &Device {
+        self.dev.as_ref().expect("device alive")
+    }
+
+    /// A pipeline for shader `name` with the given declared bindings and push size.
+    pub fn pipeline(&self, name: &str, bindings: &[Binding], push_size: u32) -> ComputePipeline {
+        let spirv = blueshift_shaders::require(name).unwrap();
+        ComputePipeline::new(self.dev(), name, &spirv, bindings, push_size).unwrap()
+    }
+
+    /// A zeroed host-readable buffer of `n` elements of `T`.
+    pub fn output<T: bytemuck::Pod>(&self, name: &str, n: usize) -> Buffer {
+        Buffer::new(
+            self.dev(),
+            name,
+            (n * std::mem::size_of::<T>()) as u64,
+            MemoryLocation::GpuToCpu,
+        )
+        .unwrap()
+    }
+
+    /// Records one dispatch in its own pass, submits and waits.
+    pub fn run(
+        &mut self,
+        pipeline: &ComputePipeline,
+        resources: &[Res<'_>],
+        push: &[u8],
+        groups: [u32; 3],
+    ) -> Vec<PassTime> {
+        let rec = self.rec.as_mut().expect("recorder alive");
+        rec.begin().unwrap();
+        rec.begin_pass(&pipeline.name).unwrap();
+        rec.dispatch(pipeline, resources, push, groups).unwrap();
+        rec.submit_and_wait().unwrap()
+    }
+}
+
+impl Default for Gpu {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Drop for Gpu {
+    fn drop(&mut self) {
+        self.rec.take();
+        self.dev.take();
+        let msgs = self.instance.validation_log().messages();
+        if !msgs.is_empty() && !std::thread::panicking() {
+            panic!("{} validation message(s):\n{}", msgs.len(), msgs.join("\n"));
+        }
+    }
+}
+
+/// Workgroup count covering `n` invocations at `local` per group.
+pub fn groups_for(n: u32, local: u32) -> u32 {
+    n.div_ceil(local)
+}
