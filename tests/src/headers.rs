@@ -1,30 +1,24 @@
 //! The generated GLSL headers under shaders/include/generated/ equal what the Rust structs
-//! produce now. Run with BLUESHIFT_BLESS=1 to rewrite them after changing a struct.
-use std::path::PathBuf;
-
-/// (file stem, header text) for every generated header.
-fn headers() -> Vec<(&'static str, String)> {
-    vec![]
-}
+//! produce now. After changing a struct: `cargo run -p blueshift-headers -- --write`.
 
 #[test]
 fn generated_headers_are_up_to_date() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shaders/include/generated");
-    let bless = std::env::var("BLUESHIFT_BLESS").is_ok_and(|v| v == "1");
-    let mut stale = Vec::new();
-    for (stem, text) in headers() {
-        let path = dir.join(format!("{stem}.glsl"));
-        let current = std::fs::read_to_string(&path).unwrap_or_default();
-        if current != text {
-            if bless {
-                std::fs::write(&path, &text).unwrap();
-            } else {
-                stale.push(path.display().to_string());
-            }
-        }
-    }
+    let stale = blueshift_headers::stale();
     assert!(
         stale.is_empty(),
-        "stale generated headers (rerun with BLUESHIFT_BLESS=1): {stale:?}"
+        "stale generated headers (run `cargo run -p blueshift-headers -- --write`): {stale:?}"
     );
+}
+
+/// The check can fail: fresh headers pass, a header with one changed byte is reported.
+#[test]
+fn a_modified_header_is_detected() {
+    let dir = std::env::temp_dir().join(format!("blueshift-headers-{}", std::process::id()));
+    blueshift_headers::write_all_in(&dir).unwrap();
+    assert!(blueshift_headers::stale_in(&dir).is_empty());
+    let (stem, text) = blueshift_headers::all().remove(0);
+    let path = dir.join(format!("{stem}.glsl"));
+    std::fs::write(&path, text.replacen("const", "const ", 1)).unwrap();
+    assert_eq!(blueshift_headers::stale_in(&dir), vec![path]);
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -14,6 +14,8 @@ mod bindings;
 mod headers;
 #[cfg(test)]
 mod rng;
+#[cfg(test)]
+mod sampling;
 
 /// A validated device plus a recorder. Panics on drop if validation reported anything.
 pub struct Gpu {

@@ -1,5 +1,104 @@
-//! CPU twins of `shaders/include/rng.glsl` (and, later, the other samplers). Every function
-//! here has a GLSL function of the same name computing the same bits; GPU tests compare them.
-//! All randomness is a pure function of (seed, sample index, dimension): no hidden state.
+//! CPU twins of the GLSL samplers in `shaders/include/` (rng.glsl, sampling.glsl). Every
+//! function here has a GLSL function of the same name computing the same bits; GPU tests
+//! compare them. All randomness is a pure function of (seed, sample index, dimension).
 
+pub mod r2;
 pub mod rng;
+pub mod sobol;
+
+/// The per-pixel sampler, chosen at run time (the value is what the shader receives).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum Sampler {
+    /// Independent hash per (seed, index, dimension).
+    White = 0,
+    /// Owen-scrambled Sobol (Burley 2020).
+    Sobol = 1,
+    /// R2 with a per-seed Cranley-Patterson rotation.
+    R2 = 2,
+}
+
+impl Sampler {
+    pub const ALL: [Sampler; 3] = [Sampler::White, Sampler::Sobol, Sampler::R2];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Sampler::White => "white",
+            Sampler::Sobol => "sobol",
+            Sampler::R2 => "r2",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+}
+
+/// A sampler evaluator holding the Sobol direction numbers.
+#[derive(Debug, Clone)]
+pub struct Samples {
+    dirs: [[u32; 32]; 4],
+}
+
+impl Default for Samples {
+    fn default() -> Self {
+        Self {
+            dirs: sobol::direction_numbers(),
+        }
+    }
+}
+
+impl Samples {
+    /// The sample as a 32-bit fraction (the GLSL `sample_bits`).
+    pub fn bits(&self, sampler: Sampler, seed: u32, index: u32, dim: u32) -> u32 {
+        match sampler {
+            Sampler::White => rng::hash3(seed, index, dim),
+            Sampler::Sobol => sobol::owen_sobol_bits(seed, index, dim, &self.dirs),
+            Sampler::R2 => r2::r2_bits(seed, index, dim),
+        }
+    }
+
+    /// The sample in [0, 1) (the GLSL `sample_1d`).
+    pub fn get(&self, sampler: Sampler, seed: u32, index: u32, dim: u32) -> f32 {
+        rng::to_unit(self.bits(sampler, seed, index, dim))
+    }
+
+    pub fn directions(&self) -> &[[u32; 32]; 4] {
+        &self.dirs
+    }
+}
+
+/// GLSL constants for `shaders/include/generated/sobol.glsl` (direction numbers and R2 alphas).
+pub fn glsl_header() -> String {
+    let dirs = sobol::direction_numbers();
+    let mut body = String::from(
+        "// Sobol direction numbers of dimensions 0..3, MSB-aligned, 32 per dimension.\n",
+    );
+    let list: Vec<String> = dirs
+        .iter()
+        .flatten()
+        .map(|d| format!("0x{d:08x}u"))
+        .collect();
+    body += &format!(
+        "const uint SOBOL_DIRECTIONS[128] = uint[](\n    {});\n",
+        list.join(", ")
+    );
+    body += &format!(
+        "const uint R2_ALPHA_X = {}u;\nconst uint R2_ALPHA_Y = {}u;\n",
+        r2::ALPHA[0],
+        r2::ALPHA[1]
+    );
+    body += &format!("const uint SOBOL_GROUP_DIMS = {}u;\n", sobol::GROUP_DIMS);
+    for s in Sampler::ALL {
+        body += &format!(
+            "const uint SAMPLER_{} = {}u;\n",
+            s.name().to_uppercase(),
+            s as u32
+        );
+    }
+    format!(
+        "// GENERATED from Rust by blueshift-sampling. Do not edit: regenerate with\n\
+         // `BLUESHIFT_BLESS=1 cargo test -p blueshift-tests generated_headers`.\n\
+         #ifndef GENERATED_SOBOL_GLSL\n#define GENERATED_SOBOL_GLSL\n\n{body}\n#endif\n"
+    )
+}

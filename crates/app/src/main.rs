@@ -1,0 +1,52 @@
+//! `blueshift`: the command-line entry point.
+mod info;
+
+use clap::{Parser, Subcommand};
+
+/// Blueshift: a path tracer whose noise is blue in screen space and stays blue over time.
+#[derive(Parser, Debug)]
+#[command(version, about)]
+struct Cli {
+    /// Enable VK_LAYER_KHRONOS_validation (also: BLUESHIFT_VALIDATION=1).
+    #[arg(long, global = true)]
+    validation: bool,
+    /// Use this Vulkan device (index as printed by `blueshift info`; also BLUESHIFT_DEVICE_INDEX).
+    #[arg(long, global = true)]
+    device_index: Option<usize>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Print the device, driver, limits and features, and verify a compute dispatch.
+    Info(info::InfoArgs),
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Info(args) => info::run(&cli_gpu(&cli), args),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+/// Device options shared by every subcommand.
+#[derive(Debug, Clone, Copy)]
+pub struct GpuOpts {
+    pub validation: bool,
+    pub device_index: Option<usize>,
+}
+
+fn cli_gpu(cli: &Cli) -> GpuOpts {
+    GpuOpts {
+        validation: cli.validation,
+        device_index: cli.device_index,
+    }
+}

@@ -1,0 +1,43 @@
+//! Every generated GLSL header, from its Rust source of truth. This crate deliberately does not
+//! depend on the shader build, so headers can be regenerated even when shaders fail to compile
+//! against stale ones: `cargo run -p blueshift-headers -- --write`.
+use std::path::{Path, PathBuf};
+
+/// (file stem, header text) for every file in `shaders/include/generated/`.
+pub fn all() -> Vec<(&'static str, String)> {
+    vec![("sobol", blueshift_sampling::glsl_header())]
+}
+
+/// The generated-header directory of this workspace.
+pub fn dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders/include/generated")
+}
+
+/// Paths whose content differs from what the Rust structs generate now.
+pub fn stale() -> Vec<PathBuf> {
+    stale_in(&dir())
+}
+
+/// Like [`stale`], for headers in `dir`.
+pub fn stale_in(dir: &Path) -> Vec<PathBuf> {
+    all()
+        .into_iter()
+        .map(|(stem, text)| (dir.join(format!("{stem}.glsl")), text))
+        .filter(|(p, text)| std::fs::read_to_string(p).ok().as_deref() != Some(text.as_str()))
+        .map(|(p, _)| p)
+        .collect()
+}
+
+/// Rewrites every generated header.
+pub fn write_all() -> std::io::Result<()> {
+    write_all_in(&dir())
+}
+
+/// Writes every generated header into `dir`.
+pub fn write_all_in(dir: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    for (stem, text) in all() {
+        std::fs::write(dir.join(format!("{stem}.glsl")), text)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,44 @@
+//! GLSL sampling.glsl == Rust blueshift_sampling for every sampler, bit for bit.
+use crate::{Gpu, groups_for};
+use blueshift_device::{Binding, Buffer};
+use blueshift_sampling::rng::hash3;
+use blueshift_sampling::{Sampler, Samples};
+
+#[test]
+fn glsl_samplers_match_rust_twins_bit_for_bit() {
+    let mut gpu = Gpu::new();
+    let p = gpu.pipeline(
+        "test/sampling",
+        &[
+            Binding::storage(0, "inputs"),
+            Binding::storage(1, "results"),
+        ],
+        4,
+    );
+    let n: u32 = 1 << 18;
+    // Random seeds, indices spanning small and large values, dimensions 0..64.
+    let inputs: Vec<[u32; 3]> = (0..n)
+        .map(|i| {
+            [
+                hash3(i, 1, 2),
+                if i % 2 == 0 { i % 4096 } else { hash3(i, 3, 4) },
+                i % 64,
+            ]
+        })
+        .collect();
+    let inb = Buffer::from_slice(gpu.dev(), "sampling.inputs", &inputs).unwrap();
+    let out = gpu.output::<[u32; 3]>("sampling.results", n as usize);
+    gpu.run(
+        &p,
+        &[(&inb).into(), (&out).into()],
+        bytemuck::bytes_of(&n),
+        [groups_for(n, 64), 1, 1],
+    );
+    let got = out.read::<[u32; 3]>().unwrap();
+    let s = Samples::default();
+    for (q, g) in inputs.iter().zip(&got) {
+        let want =
+            [Sampler::White, Sampler::Sobol, Sampler::R2].map(|m| s.bits(m, q[0], q[1], q[2]));
+        assert_eq!(*g, want, "seed {} index {} dim {}", q[0], q[1], q[2]);
+    }
+}
