@@ -13,6 +13,8 @@ mod bindings;
 #[cfg(test)]
 mod headers;
 #[cfg(test)]
+mod permute;
+#[cfg(test)]
 mod rng;
 #[cfg(test)]
 mod sampling;

@@ -1,5 +1,7 @@
 //! `blueshift`: the command-line entry point.
 mod info;
+mod output;
+mod render;
 
 use clap::{Parser, Subcommand};
 
@@ -21,12 +23,15 @@ struct Cli {
 enum Command {
     /// Print the device, driver, limits and features, and verify a compute dispatch.
     Info(info::InfoArgs),
+    /// Render frames of a scene headless to PNG (tonemapped) and EXR (linear raw estimate).
+    Render(render::RenderArgs),
 }
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Info(args) => info::run(&cli_gpu(&cli), args),
+        Command::Render(args) => render::run(&cli_gpu(&cli), args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
@@ -49,4 +54,20 @@ fn cli_gpu(cli: &Cli) -> GpuOpts {
         validation: cli.validation,
         device_index: cli.device_index,
     }
+}
+
+impl GpuOpts {
+    /// A headless device with these options.
+    pub fn device(&self) -> anyhow::Result<blueshift_device::Device> {
+        Ok(blueshift_device::headless(self.validation, self.device_index)?)
+    }
+}
+
+/// Fails if validation (when on) reported anything.
+pub fn check_validation(dev: &blueshift_device::Device) -> anyhow::Result<()> {
+    let msgs = dev.validation_messages();
+    if !msgs.is_empty() {
+        anyhow::bail!("{} validation message(s), first: {}", msgs.len(), msgs[0]);
+    }
+    Ok(())
 }

@@ -5,7 +5,26 @@ use std::path::{Path, PathBuf};
 
 /// (file stem, header text) for every file in `shaders/include/generated/`.
 pub fn all() -> Vec<(&'static str, String)> {
-    vec![("sobol", blueshift_sampling::glsl_header())]
+    use blueshift_layout::{Header, params};
+    vec![
+        ("sobol", blueshift_sampling::glsl_header()),
+        (
+            "params",
+            Header::new()
+                .push::<params::SortParams>()
+                .push::<params::RetargetParams>()
+                .push::<params::TraceParams>()
+                .push::<params::ImageParams>()
+                .constant("TRACE_FLAG_SALT_FRAME", params::TRACE_FLAG_SALT_FRAME)
+                .constant("TRACE_FLAG_ADVANCE_INDEX", params::TRACE_FLAG_ADVANCE_INDEX)
+                .constant("MASK_MODE_NONE", params::MASK_MODE_NONE)
+                .constant("MASK_MODE_2D", params::MASK_MODE_2D)
+                .constant("MASK_MODE_SPATIOTEMPORAL", params::MASK_MODE_SPATIOTEMPORAL)
+                .constant("MASK_DIMS", params::MASK_DIMS)
+                .constant("DIMS_PER_BOUNCE", params::DIMS_PER_BOUNCE)
+                .render("params"),
+        ),
+    ]
 }
 
 /// The generated-header directory of this workspace.

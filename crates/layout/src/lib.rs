@@ -6,6 +6,8 @@
 //! padding: every field's offset in GLSL is the Rust `offset_of!`. The generated headers live in
 //! `shaders/include/generated/` and a test regenerates them and fails on any difference.
 
+pub mod params;
+
 /// A Rust type with a GLSL spelling under scalar block layout.
 ///
 /// Only 4-byte-aligned types are listed: glam's `Vec4`/`Mat4` are 16-byte aligned SIMD types
@@ -117,7 +119,7 @@ impl Header {
         let guard = format!("GENERATED_{}_GLSL", file_stem.to_ascii_uppercase());
         format!(
             "// GENERATED from Rust by blueshift-layout. Do not edit: regenerate with\n\
-             // `BLUESHIFT_BLESS=1 cargo test -p blueshift-tests generated_headers`.\n\
+             // `cargo run -p blueshift-headers -- --write`.\n\
              #ifndef {guard}\n#define {guard}\n\n{}#endif\n",
             self.body
         )

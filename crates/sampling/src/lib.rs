@@ -98,7 +98,7 @@ pub fn glsl_header() -> String {
     }
     format!(
         "// GENERATED from Rust by blueshift-sampling. Do not edit: regenerate with\n\
-         // `BLUESHIFT_BLESS=1 cargo test -p blueshift-tests generated_headers`.\n\
+         // `cargo run -p blueshift-headers -- --write`.\n\
          #ifndef GENERATED_SOBOL_GLSL\n#define GENERATED_SOBOL_GLSL\n\n{body}\n#endif\n"
     )
 }

@@ -1,5 +1,5 @@
 // GENERATED from Rust by blueshift-sampling. Do not edit: regenerate with
-// `BLUESHIFT_BLESS=1 cargo test -p blueshift-tests generated_headers`.
+// `cargo run -p blueshift-headers -- --write`.
 #ifndef GENERATED_SOBOL_GLSL
 #define GENERATED_SOBOL_GLSL
 

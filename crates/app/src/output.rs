@@ -1,0 +1,65 @@
+//! Atomic image output: write to a temporary file in the same directory, then rename, so a
+//! failed or interrupted run never leaves a half-written file under the final name.
+use anyhow::{Context, Result};
+use std::io::Write;
+use std::path::Path;
+
+/// Writes `bytes` to `path` atomically.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().context("output path has no file name")?.to_string_lossy();
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = (|| -> std::io::Result<()> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.with_context(|| format!("writing {}", path.display()))
+}
+
+/// Encodes RGBA8 pixels as PNG (in memory).
+pub fn png_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<Vec<u8>> {
+    let img = image::RgbaImage::from_raw(width, height, rgba.to_vec()).context("pixel count")?;
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png)?;
+    Ok(out.into_inner())
+}
+
+/// Encodes linear RGB (alpha ignored) as a float EXR (in memory).
+pub fn exr_rgb32f(width: u32, height: u32, rgba: &[[f32; 4]]) -> Result<Vec<u8>> {
+    let data: Vec<f32> = rgba.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
+    let img = image::Rgb32FImage::from_raw(width, height, data).context("pixel count")?;
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::OpenExr)?;
+    Ok(out.into_inner())
+}
+
+/// Creates `dir` (and parents) and checks it is writable, naming it on failure.
+pub fn prepare_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    let probe = dir.join(format!(".blueshift-write-test.{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .with_context(|| format!("output directory {} is not writable", dir.display()))?;
+    let _ = std::fs::remove_file(probe);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn atomic_write_leaves_no_temp_file() {
+        let dir = std::env::temp_dir().join(format!("bs-out-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        write_atomic(&dir.join("a.bin"), b"hello").unwrap();
+        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("a.bin")]);
+        assert!(write_atomic(&dir.join("missing/b.bin"), b"x").is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

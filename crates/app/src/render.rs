@@ -1,0 +1,134 @@
+//! `blueshift render`: headless frames of a scene to PNG (tonemapped) and EXR (linear raw).
+use crate::GpuOpts;
+use crate::output::{exr_rgb32f, png_rgba8, prepare_dir, write_atomic};
+use anyhow::{Context, Result, bail};
+use blueshift_render::{CameraPath, Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
+use blueshift_sampling::Sampler;
+use blueshift_scene::Scene;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// glTF/GLB file, or a bundled preset: cornell-box, textured, edges.
+    #[arg(long, default_value = "cornell-box")]
+    pub scene: String,
+    #[arg(long, default_value_t = 256)]
+    pub width: u32,
+    #[arg(long, default_value_t = 256)]
+    pub height: u32,
+    /// Samples per pixel per frame.
+    #[arg(long, default_value_t = 1)]
+    pub spp: u32,
+    /// Path vertices after the camera (1 = direct light only).
+    #[arg(long, default_value_t = 8)]
+    pub bounces: u32,
+    /// Sorting block edge (2..=8).
+    #[arg(long, default_value_t = 4)]
+    pub block: u32,
+    /// Seeded sampler (white, sobol, r2); default depends on the method.
+    #[arg(long)]
+    pub sampler: Option<String>,
+    /// Directory with masks and retarget tables.
+    #[arg(long)]
+    pub assets: Option<PathBuf>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[arg(long, default_value_t = 16)]
+    pub frames: u32,
+    /// white, white-fixed, sobol, mask-r2, stbn, sort, sort-retarget.
+    #[arg(long, default_value = "sort-retarget")]
+    pub method: String,
+    /// static, pan:PX (px/frame), orbit:DEG (deg/frame), or a keyframe JSON file.
+    #[arg(long, default_value = "static")]
+    pub camera_path: String,
+    /// Experiment: hash the frame into fixed seeds (breaks temporal correlation).
+    #[arg(long)]
+    pub frame_salt: bool,
+    /// Write every frame (default: only the last).
+    #[arg(long)]
+    pub all_frames: bool,
+    #[arg(long, default_value = "out/render")]
+    pub out: PathBuf,
+}
+
+/// Resolves a preset name to the bundled file, else treats it as a path.
+pub fn scene_path(spec: &str) -> PathBuf {
+    let preset = default_assets_dir().join("scenes").join(format!("{spec}.gltf"));
+    if !spec.contains('/') && !spec.contains('.') && preset.exists() {
+        preset
+    } else {
+        PathBuf::from(spec)
+    }
+}
+
+pub fn load_scene(spec: &str) -> Result<Scene> {
+    let path = scene_path(spec);
+    let scene = Scene::load(&path).with_context(|| format!("loading scene {}", path.display()))?;
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(scene)
+}
+
+pub fn config(a: &SceneArgs, method: &str) -> Result<RenderConfig> {
+    let method: Method = method.parse().map_err(anyhow::Error::msg)?;
+    let sampler = match &a.sampler {
+        None => None,
+        Some(s) => Some(Sampler::from_name(s).with_context(|| format!("unknown sampler '{s}' (known: white, sobol, r2)"))?),
+    };
+    Ok(RenderConfig {
+        spp: a.spp,
+        bounces: a.bounces,
+        block: a.block,
+        method,
+        sampler,
+        ..RenderConfig::new(a.width, a.height)
+    })
+}
+
+pub fn load_assets(a: &SceneArgs) -> Result<MethodAssets> {
+    let dir = a.assets.clone().unwrap_or_else(default_assets_dir);
+    Ok(MethodAssets::load(&dir)?)
+}
+
+pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
+    if args.frames == 0 || args.frames > 100_000 {
+        bail!("--frames {} is outside 1..=100000", args.frames);
+    }
+    let mut cfg = config(&args.scene, &args.method)?;
+    cfg.frame_salt = args.frame_salt;
+    let path = CameraPath::parse(&args.camera_path).map_err(anyhow::Error::msg)?;
+    let scene = load_scene(&args.scene.scene)?;
+    let assets = load_assets(&args.scene)?;
+    prepare_dir(&args.out)?;
+    let dev = gpu.device()?;
+    let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
+    let base = scene.camera_or_default();
+    let bar = ProgressBar::new(args.frames as u64);
+    bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {msg} eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar()));
+    for f in 0..args.frames {
+        r.set_camera(path.camera(&base, f, cfg.height));
+        let stats = r.render_frame()?;
+        bar.set_message(format!("trace {:.1} ms", stats.ms("trace")));
+        bar.inc(1);
+        if args.all_frames || f + 1 == args.frames {
+            write_frame(&r, &args.out, f)?;
+        }
+    }
+    bar.finish();
+    crate::check_validation(&dev)?;
+    println!("wrote {} to {}", if args.all_frames { "all frames" } else { "the last frame" }, args.out.display());
+    Ok(())
+}
+
+fn write_frame(r: &Renderer, dir: &Path, f: u32) -> Result<()> {
+    let (w, h) = (r.config().width, r.config().height);
+    write_atomic(&dir.join(format!("frame_{f:05}.png")), &png_rgba8(w, h, &r.read_ldr()?)?)?;
+    write_atomic(&dir.join(format!("frame_{f:05}.exr")), &exr_rgb32f(w, h, &r.read_estimate()?)?)?;
+    Ok(())
+}

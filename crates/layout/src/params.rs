@@ -1,0 +1,90 @@
+//! Parameter structs of the passes, shared with GLSL. They live here, not in the pass crates,
+//! so the header generator (crates/headers) never waits on the shader build.
+use crate::gpu_struct;
+
+gpu_struct! {
+    /// Push constants of `permute/sort_seeds` (one workgroup per block).
+    pub struct SortParams {
+        /// Visible screen size; pixels outside it are never ranked.
+        pub width: u32,
+        pub height: u32,
+        /// Row stride of the seed buffer (screen width padded to a multiple of the mask size).
+        pub stride: u32,
+        /// Block edge B (2..=8).
+        pub block: u32,
+        /// Mask tile edge N.
+        pub mask_size: u32,
+        /// Mask offset of this frame: mask value at pixel p is M((p + offset) mod N).
+        pub offset_x: u32,
+        pub offset_y: u32,
+    }
+}
+
+gpu_struct! {
+    /// Push constants of `permute/retarget_seeds` (one invocation per padded pixel).
+    pub struct RetargetParams {
+        /// Padded screen size (multiples of the mask size).
+        pub padded_width: u32,
+        pub padded_height: u32,
+        pub mask_size: u32,
+        /// Mask offset of the frame the seeds were sorted for.
+        pub offset_x: u32,
+        pub offset_y: u32,
+    }
+}
+
+gpu_struct! {
+    /// Push constants of `trace/trace` (100 bytes: fits the 128-byte minimum limit).
+    pub struct TraceParams {
+        pub cam_origin: glam::Vec3,
+        pub cam_forward: glam::Vec3,
+        /// Right and up vectors scaled so that pixel NDC (-1..1) maps onto the image plane.
+        pub cam_right: glam::Vec3,
+        pub cam_up: glam::Vec3,
+        pub width: u32,
+        pub height: u32,
+        /// Row stride of the (padded) seed buffer.
+        pub stride: u32,
+        pub frame: u32,
+        pub spp: u32,
+        /// Maximum path vertices after the camera (1 = direct light only).
+        pub max_bounces: u32,
+        /// `SAMPLER_*` constant of sampling.glsl.
+        pub sampler: u32,
+        /// `TRACE_FLAG_*` bits.
+        pub flags: u32,
+        /// `MASK_MODE_*`: whether the first dimensions come from a blue-noise mask.
+        pub mask_mode: u32,
+        pub mask_size: u32,
+        /// Slices of a spatio-temporal mask (1 for a 2D mask).
+        pub mask_frames: u32,
+        pub mask_offset_x: u32,
+        pub mask_offset_y: u32,
+    }
+}
+
+/// `TraceParams::flags`: hash the frame index into the seed (fresh randomness every frame).
+pub const TRACE_FLAG_SALT_FRAME: u32 = 1;
+/// `TraceParams::flags`: sample index = frame * spp + s (a progressive sequence per pixel).
+pub const TRACE_FLAG_ADVANCE_INDEX: u32 = 2;
+/// `TraceParams::mask_mode` values.
+pub const MASK_MODE_NONE: u32 = 0;
+pub const MASK_MODE_2D: u32 = 1;
+pub const MASK_MODE_SPATIOTEMPORAL: u32 = 2;
+/// Sample dimensions driven by the mask in the mask modes: camera jitter and the first vertex.
+pub const MASK_DIMS: u32 = 9;
+/// Sample dimensions: 0-1 camera jitter; then per path vertex b, base 2 + 7b: light point (2),
+/// light choice, lobe choice, BSDF direction (2), Russian roulette.
+pub const DIMS_PER_BOUNCE: u32 = 7;
+
+gpu_struct! {
+    /// Push constants of `trace/accumulate` and `trace/tonemap`.
+    pub struct ImageParams {
+        pub width: u32,
+        pub height: u32,
+        /// accumulate: frames already in the running mean (0 resets it).
+        pub count: u32,
+        /// tonemap: exposure multiplier applied before the sRGB curve.
+        pub exposure: f32,
+    }
+}

@@ -1,0 +1,156 @@
+//! CPU twins of `shaders/permute/sort_seeds.comp` and `retarget_seeds.comp`. Same inputs,
+//! same arithmetic (integer keys only), so the GPU must agree exactly.
+use crate::{RetargetParams, SortParams};
+
+/// Sort key of a luminance: its bit pattern, with NaN, negatives and -0 mapped to +0.
+/// For non-negative floats the bit pattern orders like the value, so ranking is exact.
+#[inline]
+pub fn sort_key(lum: f32) -> u32 {
+    if lum > 0.0 { lum.to_bits() } else { 0 }
+}
+
+/// Ranks (key, in-block index) pairs: element i gets the number of elements before it.
+fn ranks(keys: &[(u32, usize)]) -> Vec<usize> {
+    keys.iter()
+        .map(|a| keys.iter().filter(|b| (b.0, b.1) < (a.0, a.1)).count())
+        .collect()
+}
+
+/// Sorting pass, in place on the padded seed buffer. `lum` is the raw frame estimate's
+/// luminance, `width * height`, row-major; `mask` holds N*N distinct ranks.
+///
+/// Per block, the seed of the k-th darkest pixel moves to the position of the k-th smallest
+/// mask value; partial blocks at the screen edge sort their visible pixels among themselves.
+pub fn sort_seeds_cpu(p: &SortParams, lum: &[f32], mask: &[u32], seeds: &mut [u32]) {
+    let b = p.block;
+    let n = p.mask_size;
+    for by in (0..p.height).step_by(b as usize) {
+        for bx in (0..p.width).step_by(b as usize) {
+            // Visible pixels of the block in row-major in-block order.
+            let mut px = Vec::new();
+            for ty in 0..b {
+                for tx in 0..b {
+                    let (x, y) = (bx + tx, by + ty);
+                    if x < p.width && y < p.height {
+                        px.push((x, y, (ty * b + tx) as usize));
+                    }
+                }
+            }
+            let lum_keys: Vec<_> = px
+                .iter()
+                .map(|&(x, y, i)| (sort_key(lum[(y * p.width + x) as usize]), i))
+                .collect();
+            let mask_keys: Vec<_> = px
+                .iter()
+                .map(|&(x, y, i)| {
+                    let (mx, my) = ((x + p.offset_x) % n, (y + p.offset_y) % n);
+                    (mask[(my * n + mx) as usize], i)
+                })
+                .collect();
+            let lum_rank = ranks(&lum_keys);
+            let mask_rank = ranks(&mask_keys);
+            let mut pos_of_mask_rank = vec![0usize; px.len()];
+            for (j, &r) in mask_rank.iter().enumerate() {
+                pos_of_mask_rank[r] = j;
+            }
+            let old: Vec<u32> = px
+                .iter()
+                .map(|&(x, y, _)| seeds[(y * p.stride + x) as usize])
+                .collect();
+            for (j, &r) in lum_rank.iter().enumerate() {
+                let (dx, dy, _) = px[pos_of_mask_rank[r]];
+                seeds[(dy * p.stride + dx) as usize] = old[j];
+            }
+        }
+    }
+}
+
+/// Retargeting pass: the seed at padded pixel x moves to x + D((x + o) mod N), toroidally
+/// on the padded screen. `table` holds D as (dx, dy) per mask texel, row-major.
+pub fn retarget_seeds_cpu(p: &RetargetParams, table: &[[i32; 2]], seeds_in: &[u32]) -> Vec<u32> {
+    let (w, h, n) = (p.padded_width as i64, p.padded_height as i64, p.mask_size);
+    let mut out = vec![0u32; seeds_in.len()];
+    for y in 0..h {
+        for x in 0..w {
+            let u = ((y as u32 + p.offset_y) % n) * n + (x as u32 + p.offset_x) % n;
+            let [dx, dy] = table[u as usize];
+            let (tx, ty) = ((x + dx as i64).rem_euclid(w), (y + dy as i64).rem_euclid(h));
+            out[(ty * w + tx) as usize] = seeds_in[(y * w + x) as usize];
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Screen, is_permutation_of, mask_offset};
+
+    fn lcg(s: &mut u64) -> u32 {
+        *s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*s >> 33) as u32
+    }
+
+    /// A random permutation of 0..n*n as a stand-in mask.
+    fn random_mask(n: u32, s: &mut u64) -> Vec<u32> {
+        let mut m: Vec<u32> = (0..n * n).collect();
+        for i in (1..m.len()).rev() {
+            m.swap(i, lcg(s) as usize % (i + 1));
+        }
+        m
+    }
+
+    #[test]
+    fn sorting_keeps_a_permutation_for_odd_sizes() {
+        let mut s = 1;
+        for (w, h) in [(13, 7), (64, 64), (37, 50)] {
+            for b in [2, 3, 4, 8] {
+                let sc = Screen::new(w, h, 16).unwrap();
+                let mask = random_mask(16, &mut s);
+                let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
+                let mut seeds = init.clone();
+                for f in 0..5 {
+                    let lum: Vec<f32> = (0..w * h)
+                        .map(|_| (lcg(&mut s) % 100) as f32 / 7.0)
+                        .collect();
+                    let p = sc.sort_params(b, mask_offset(f, (12, 9), 16)).unwrap();
+                    sort_seeds_cpu(&p, &lum, &mask, &mut seeds);
+                    assert!(is_permutation_of(&seeds, &init));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sorting_an_image_equal_to_the_mask_is_the_identity() {
+        let mut s = 7;
+        let sc = Screen::new(32, 32, 16).unwrap();
+        let mask = random_mask(16, &mut s);
+        let off = (5, 11);
+        let lum: Vec<f32> = (0..32 * 32)
+            .map(|i| mask[(((i / 32 + off.1) % 16) * 16 + (i % 32 + off.0) % 16) as usize] as f32)
+            .collect();
+        let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
+        let mut seeds = init.clone();
+        sort_seeds_cpu(&sc.sort_params(4, off).unwrap(), &lum, &mask, &mut seeds);
+        assert_eq!(seeds, init);
+    }
+
+    #[test]
+    fn retargeting_with_the_identity_table_is_the_identity() {
+        let sc = Screen::new(20, 9, 8).unwrap();
+        let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
+        let out = retarget_seeds_cpu(&sc.retarget_params((3, 4)), &[[0, 0]; 64], &init);
+        assert_eq!(out, init);
+    }
+
+    #[test]
+    fn mask_offset_is_exact_integer_shift() {
+        assert_eq!(mask_offset(0, (48, 36), 64), (0, 0));
+        assert_eq!(mask_offset(1, (48, 36), 64), (48, 36));
+        assert_eq!(mask_offset(2, (48, 36), 64), (32, 8));
+        assert_eq!(mask_offset(1 << 40, (48, 36), 64), (0, 0));
+    }
+}

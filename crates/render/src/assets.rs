@@ -1,0 +1,71 @@
+//! The precomputed textures the methods need, loaded from `assets/`.
+use crate::{RenderError, Result};
+use blueshift_analysis::assets::{load_mask, load_retarget, load_stbn};
+use std::path::{Path, PathBuf};
+
+/// Mask tile, retarget table and spatio-temporal mask, flattened for upload.
+#[derive(Debug, Clone)]
+pub struct MethodAssets {
+    /// Mask tile edge N.
+    pub n: u32,
+    /// N*N void-and-cluster ranks.
+    pub mask: Vec<u32>,
+    /// Retarget displacement per mask texel.
+    pub table: Vec<[i32; 2]>,
+    /// The integer shift s the table was optimised for.
+    pub shift: (u32, u32),
+    /// Spatio-temporal mask: edge, slices, ranks (slice-major).
+    pub stbn_n: u32,
+    pub stbn_frames: u32,
+    pub stbn: Vec<u32>,
+}
+
+/// The workspace's `assets/` directory (or `BLUESHIFT_ASSETS`).
+pub fn default_assets_dir() -> PathBuf {
+    std::env::var_os("BLUESHIFT_ASSETS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets"))
+}
+
+fn asset_err(path: &Path, e: impl std::fmt::Display) -> RenderError {
+    RenderError::Asset(format!("{}: {e}", path.display()))
+}
+
+impl MethodAssets {
+    /// Loads the 64x64 mask, its retarget table and the 64x64xT spatio-temporal mask.
+    pub fn load(dir: &Path) -> Result<Self> {
+        Self::load_files(
+            &dir.join("masks/bn64.r16"),
+            &dir.join("retarget/bn64_s48_36_r6.bin"),
+            &dir.join("masks/stbn64x32.r16"),
+            64,
+        )
+    }
+
+    /// Loads explicit files; the table must be made for a mask of the same size.
+    pub fn load_files(mask: &Path, table: &Path, stbn: &Path, stbn_n: usize) -> Result<Self> {
+        let m = load_mask(mask).map_err(|e| asset_err(mask, e))?;
+        let t = load_retarget(table).map_err(|e| asset_err(table, e))?;
+        if t.n != m.n {
+            return Err(RenderError::Asset(format!(
+                "retarget table {} is for a {}x{} mask but mask {} is {}x{}",
+                table.display(),
+                t.n,
+                t.n,
+                mask.display(),
+                m.n,
+                m.n
+            )));
+        }
+        let v = load_stbn(stbn, stbn_n).map_err(|e| asset_err(stbn, e))?;
+        Ok(Self {
+            n: m.n as u32,
+            mask: m.ranks.iter().map(|&r| r as u32).collect(),
+            table: t.offsets.iter().map(|&(dx, dy)| [dx as i32, dy as i32]).collect(),
+            shift: (t.shift.0 as u32, t.shift.1 as u32),
+            stbn_n: v.n as u32,
+            stbn_frames: v.t as u32,
+            stbn: v.ranks.iter().map(|&r| r as u32).collect(),
+        })
+    }
+}

@@ -1,0 +1,180 @@
+//! Camera paths: built-in presets and a small keyframe file format.
+//!
+//! File format (JSON): `{"keyframes": [{"frame": 0, "position": [x,y,z], "target": [x,y,z],
+//! "yfov_degrees": 39.3}, ...]}`. Frames between keyframes interpolate linearly; before the
+//! first and after the last keyframe the camera holds still. Frames must increase.
+use blueshift_scene::Camera;
+use glam::Vec3;
+use serde::Deserialize;
+use std::path::Path;
+
+/// Where the camera is at each frame.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CameraPath {
+    Static,
+    /// Sideways pan moving points at the target distance by this many pixels per frame.
+    Pan { px_per_frame: f32 },
+    /// Orbit around the target by this many degrees per frame.
+    Orbit { degrees_per_frame: f32 },
+    Keyframes(Vec<Keyframe>),
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Keyframe {
+    pub frame: u32,
+    pub position: [f32; 3],
+    pub target: [f32; 3],
+    pub yfov_degrees: f32,
+}
+
+#[derive(Deserialize)]
+struct PathFile {
+    keyframes: Vec<Keyframe>,
+}
+
+impl CameraPath {
+    /// Parses `static`, `pan[:PX]`, `orbit[:DEG]` or a path to a keyframe file.
+    pub fn parse(spec: &str) -> Result<CameraPath, String> {
+        let (name, arg) = spec.split_once(':').map_or((spec, None), |(a, b)| (a, Some(b)));
+        let number = |default: f32| -> Result<f32, String> {
+            arg.map_or(Ok(default), |a| {
+                a.parse::<f32>()
+                    .ok()
+                    .filter(|v| v.is_finite() && v.abs() <= 1000.0)
+                    .ok_or_else(|| format!("camera path '{spec}': '{a}' is not a number in -1000..=1000"))
+            })
+        };
+        match name {
+            "static" => Ok(CameraPath::Static),
+            "pan" => Ok(CameraPath::Pan { px_per_frame: number(1.0)? }),
+            "orbit" => Ok(CameraPath::Orbit { degrees_per_frame: number(0.5)? }),
+            _ => Self::load(Path::new(spec)),
+        }
+    }
+
+    /// Loads a keyframe file.
+    pub fn load(path: &Path) -> Result<CameraPath, String> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            format!("camera path '{}': {e} (presets: static, pan:PX, orbit:DEG)", path.display())
+        })?;
+        let file: PathFile = serde_json::from_str(&text)
+            .map_err(|e| format!("camera path '{}': {e}", path.display()))?;
+        let k = &file.keyframes;
+        if k.is_empty() {
+            return Err(format!("camera path '{}': no keyframes", path.display()));
+        }
+        for w in k.windows(2) {
+            if w[1].frame <= w[0].frame {
+                return Err(format!("camera path '{}': keyframe frames must increase", path.display()));
+            }
+        }
+        for kf in k {
+            let finite = kf.position.iter().chain(&kf.target).all(|v| v.is_finite());
+            if !finite || !(0.1..179.0).contains(&kf.yfov_degrees) {
+                return Err(format!(
+                    "camera path '{}': keyframe at frame {} has a non-finite position/target or a fov outside 0.1..179 degrees",
+                    path.display(),
+                    kf.frame
+                ));
+            }
+        }
+        Ok(CameraPath::Keyframes(file.keyframes))
+    }
+
+    /// A short name for reports (`static`, `pan:1`, `orbit:0.5`, `file`).
+    pub fn label(&self) -> String {
+        match self {
+            CameraPath::Static => "static".into(),
+            CameraPath::Pan { px_per_frame } => format!("pan:{px_per_frame}"),
+            CameraPath::Orbit { degrees_per_frame } => format!("orbit:{degrees_per_frame}"),
+            CameraPath::Keyframes(_) => "keyframes".into(),
+        }
+    }
+
+    /// The camera at `frame` for a base camera and image height in pixels.
+    pub fn camera(&self, base: &Camera, frame: u32, height: u32) -> Camera {
+        match self {
+            CameraPath::Static => *base,
+            CameraPath::Pan { px_per_frame } => {
+                let dist = (base.target - base.position).length();
+                // World units per pixel at the target distance.
+                let per_px = 2.0 * (base.yfov * 0.5).tan() * dist / height.max(1) as f32;
+                let right = base.basis(1.0).right.normalize_or_zero();
+                let shift = right * (px_per_frame * per_px * frame as f32);
+                Camera { position: base.position + shift, target: base.target + shift, ..*base }
+            }
+            CameraPath::Orbit { degrees_per_frame } => {
+                let angle = (degrees_per_frame * frame as f32).to_radians();
+                let offset = base.position - base.target;
+                let axis = base.up.normalize_or_zero();
+                let rotated = glam::Quat::from_axis_angle(axis, angle) * offset;
+                Camera { position: base.target + rotated, ..*base }
+            }
+            CameraPath::Keyframes(k) => interpolate(k, frame),
+        }
+    }
+}
+
+fn interpolate(k: &[Keyframe], frame: u32) -> Camera {
+    let at = |kf: &Keyframe| Camera {
+        position: Vec3::from(kf.position),
+        target: Vec3::from(kf.target),
+        up: Vec3::Y,
+        yfov: kf.yfov_degrees.to_radians(),
+    };
+    let Some(next) = k.iter().position(|kf| kf.frame > frame) else {
+        return at(&k[k.len() - 1]);
+    };
+    if next == 0 {
+        return at(&k[0]);
+    }
+    let (a, b) = (&k[next - 1], &k[next]);
+    let t = (frame - a.frame) as f32 / (b.frame - a.frame) as f32;
+    let (ca, cb) = (at(a), at(b));
+    Camera {
+        position: ca.position.lerp(cb.position, t),
+        target: ca.target.lerp(cb.target, t),
+        up: Vec3::Y,
+        yfov: ca.yfov + (cb.yfov - ca.yfov) * t,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn base() -> Camera {
+        Camera { position: Vec3::new(0.0, 0.0, 4.0), target: Vec3::ZERO, up: Vec3::Y, yfov: 0.7 }
+    }
+
+    #[test]
+    fn presets_parse() {
+        assert_eq!(CameraPath::parse("static").unwrap(), CameraPath::Static);
+        assert_eq!(CameraPath::parse("pan:8").unwrap(), CameraPath::Pan { px_per_frame: 8.0 });
+        assert!(CameraPath::parse("pan:abc").is_err());
+        assert!(CameraPath::parse("/nonexistent/path.json").unwrap_err().contains("presets"));
+    }
+
+    #[test]
+    fn pan_moves_the_target_by_the_requested_pixels() {
+        let p = CameraPath::Pan { px_per_frame: 2.0 };
+        let c = p.camera(&base(), 10, 100);
+        // Project the original target into the new camera: it moved 20 px to the left.
+        let b = c.basis(1.0);
+        let d = (Vec3::ZERO - c.position).normalize();
+        let x_ndc = d.dot(b.right.normalize()) / d.dot(b.forward) / b.right.length();
+        let px = x_ndc * 50.0;
+        assert!((px + 20.0).abs() < 1e-3, "{px}");
+    }
+
+    #[test]
+    fn keyframes_interpolate_linearly() {
+        let k = vec![
+            Keyframe { frame: 0, position: [0.0, 0.0, 4.0], target: [0.0; 3], yfov_degrees: 40.0 },
+            Keyframe { frame: 10, position: [2.0, 0.0, 4.0], target: [0.0; 3], yfov_degrees: 60.0 },
+        ];
+        let c = CameraPath::Keyframes(k).camera(&base(), 5, 100);
+        assert!((c.position.x - 1.0).abs() < 1e-6);
+        assert!((c.yfov.to_degrees() - 50.0).abs() < 1e-4);
+    }
+}

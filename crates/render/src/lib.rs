@@ -1,0 +1,375 @@
+//! The frame loop a host application drives frame by frame:
+//! `trace -> sort_seeds -> retarget_seeds -> accumulate -> tonemap`, one submission per frame,
+//! with GPU timestamps per pass. The seed buffer is a permutation at every moment.
+//!
+//! ```no_run
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
+//! let dev = blueshift_device::headless(false, None)?;
+//! let scene = blueshift_scene::Scene::load("assets/scenes/cornell-box.gltf")?;
+//! let assets = MethodAssets::load(&default_assets_dir())?;
+//! let cfg = RenderConfig { method: Method::SortRetarget, ..RenderConfig::new(256, 256) };
+//! let mut r = Renderer::new(&dev, &scene, &assets, cfg)?;
+//! for _ in 0..16 { r.render_frame()?; }
+//! let image = r.read_ldr()?;
+//! # Ok(()) }
+//! ```
+mod assets;
+mod camera_path;
+mod method;
+mod passes;
+mod upload;
+
+pub use assets::{MethodAssets, default_assets_dir};
+pub use camera_path::{CameraPath, Keyframe};
+pub use method::Method;
+pub use upload::SceneBuffers;
+
+use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
+use blueshift_layout::params::{
+    ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
+    TRACE_FLAG_SALT_FRAME, TraceParams,
+};
+use blueshift_permute::{PermutePasses, Screen, mask_offset};
+use blueshift_sampling::Sampler;
+use blueshift_scene::{Camera, Scene, SceneGpu};
+use passes::ImagePasses;
+
+/// Errors of the renderer.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error(transparent)]
+    Device(#[from] blueshift_device::DeviceError),
+    #[error(transparent)]
+    Permute(#[from] blueshift_permute::PermuteError),
+    #[error("scene: {0}")]
+    Scene(String),
+    #[error("asset: {0}")]
+    Asset(String),
+    #[error("{0}")]
+    Invalid(String),
+}
+
+pub type Result<T, E = RenderError> = std::result::Result<T, E>;
+
+/// What to render and how.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderConfig {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel per frame.
+    pub spp: u32,
+    /// Path vertices after the camera (1 = direct light only).
+    pub bounces: u32,
+    pub method: Method,
+    /// Sorting block edge B (2..=8).
+    pub block: u32,
+    /// Seeded sampler; `None` = the method's default.
+    pub sampler: Option<Sampler>,
+    /// Experiment: hash the frame index into fixed seeds (breaks the temporal correlation).
+    pub frame_salt: bool,
+    /// Seeds the initial seed map (different sequences for the same settings).
+    pub sequence: u32,
+    pub exposure: f32,
+}
+
+impl RenderConfig {
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            spp: 1,
+            bounces: 8,
+            method: Method::SortRetarget,
+            block: 4,
+            sampler: None,
+            frame_salt: false,
+            sequence: 0,
+            exposure: 1.0,
+        }
+    }
+
+    /// Checks every user-controlled value against its range and the device limits.
+    pub fn validate(&self, dev: &Device) -> Result<()> {
+        let max = dev.info().max_image_dimension_2d.min(16384);
+        let bad = |m: String| Err(RenderError::Invalid(m));
+        if self.width == 0 || self.height == 0 || self.width > max || self.height > max {
+            return bad(format!("resolution {}x{} is outside 1..={max} per side", self.width, self.height));
+        }
+        if !(1..=4096).contains(&self.spp) {
+            return bad(format!("spp {} is outside 1..=4096", self.spp));
+        }
+        if self.bounces > 64 {
+            return bad(format!("bounces {} is over 64", self.bounces));
+        }
+        if !(2..=8).contains(&self.block) {
+            return bad(format!("block size {} is outside 2..=8", self.block));
+        }
+        if !self.exposure.is_finite() || self.exposure <= 0.0 {
+            return bad(format!("exposure {} must be a positive number", self.exposure));
+        }
+        let bytes = self.width as u64 * self.height as u64 * 16;
+        if bytes > dev.info().max_storage_buffer_range {
+            return bad(format!(
+                "resolution {}x{} needs a {} MiB estimate buffer, over the device's {} MiB storage-buffer range",
+                self.width,
+                self.height,
+                bytes >> 20,
+                dev.info().max_storage_buffer_range >> 20
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Per-pass GPU times of one frame.
+#[derive(Debug, Clone, Default)]
+pub struct FrameStats {
+    pub frame: u64,
+    pub passes: Vec<PassTime>,
+}
+
+impl FrameStats {
+    /// Milliseconds of the pass named `name` (0 if it did not run).
+    pub fn ms(&self, name: &str) -> f64 {
+        self.passes.iter().filter(|p| p.name == name).map(|p| p.ms).sum()
+    }
+}
+
+/// The renderer: scene on the device, seed buffers, images, passes.
+pub struct Renderer {
+    dev: Device,
+    cfg: RenderConfig,
+    screen: Screen,
+    scene: SceneBuffers,
+    image: ImagePasses,
+    permute: PermutePasses,
+    rec: Recorder,
+    seeds: [Buffer; 2],
+    current: usize,
+    initial_seeds: Vec<u32>,
+    estimate: Buffer,
+    accum: Buffer,
+    ldr: Buffer,
+    mask: Buffer,
+    stbn: Buffer,
+    table: Buffer,
+    assets: MethodAssets,
+    camera: Camera,
+    frame: u64,
+    accumulated: u32,
+}
+
+impl std::fmt::Debug for Renderer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Renderer").field("cfg", &self.cfg).field("frame", &self.frame).finish()
+    }
+}
+
+/// The initial seed map: distinct for every padded pixel (pcg_hash is a bijection on u32).
+pub fn initial_seeds(count: usize, sequence: u32) -> Vec<u32> {
+    use blueshift_sampling::rng::pcg_hash;
+    let salt = pcg_hash(sequence ^ 0xb5ad_4ece);
+    (0..count as u32).map(|i| pcg_hash(i ^ salt)).collect()
+}
+
+impl Renderer {
+    pub fn new(dev: &Device, scene: &Scene, assets: &MethodAssets, cfg: RenderConfig) -> Result<Self> {
+        cfg.validate(dev)?;
+        let gpu_scene = SceneGpu::build(scene).map_err(|e| RenderError::Scene(e.to_string()))?;
+        let scene_buffers = SceneBuffers::new(dev, &gpu_scene)?;
+        let screen = Screen::new(cfg.width, cfg.height, assets.n)?;
+        let initial = initial_seeds(screen.seed_count(), cfg.sequence);
+        let pixels = cfg.width as u64 * cfg.height as u64;
+        let host = MemoryLocation::GpuToCpu;
+        let seeds = [
+            Buffer::from_slice(dev, "frame.seeds.a", &initial)?,
+            Buffer::from_slice(dev, "frame.seeds.b", &initial)?,
+        ];
+        let r = Self {
+            dev: dev.clone(),
+            screen,
+            scene: scene_buffers,
+            image: ImagePasses::new(dev)?,
+            permute: PermutePasses::new(dev)?,
+            rec: Recorder::new(dev, "frame")?,
+            seeds,
+            current: 0,
+            initial_seeds: initial,
+            estimate: Buffer::new(dev, "frame.estimate", pixels * 16, host)?,
+            accum: Buffer::new(dev, "frame.accum", pixels * 16, host)?,
+            ldr: Buffer::new(dev, "frame.ldr", pixels * 4, host)?,
+            mask: Buffer::from_slice(dev, "assets.mask", &assets.mask)?,
+            stbn: Buffer::from_slice(dev, "assets.stbn", &assets.stbn)?,
+            table: Buffer::from_slice(dev, "assets.retarget", &assets.table)?,
+            assets: assets.clone(),
+            camera: scene.camera_or_default(),
+            frame: 0,
+            accumulated: 0,
+            cfg,
+        };
+        Ok(r)
+    }
+
+    pub fn config(&self) -> &RenderConfig {
+        &self.cfg
+    }
+    pub fn frame(&self) -> u64 {
+        self.frame
+    }
+    pub fn camera(&self) -> Camera {
+        self.camera
+    }
+    pub fn device(&self) -> &Device {
+        &self.dev
+    }
+
+    /// Moves the camera; the accumulation restarts (seeds keep their permutation state).
+    pub fn set_camera(&mut self, camera: Camera) {
+        if camera != self.camera {
+            self.camera = camera;
+            self.accumulated = 0;
+        }
+    }
+
+    /// Restarts the sequence: initial seeds, frame 0, empty accumulation.
+    pub fn reset(&mut self) -> Result<()> {
+        for s in &mut self.seeds {
+            s.write(0, &self.initial_seeds)?;
+        }
+        self.current = 0;
+        self.frame = 0;
+        self.accumulated = 0;
+        Ok(())
+    }
+
+    /// Switches method (and resets the sequence).
+    pub fn set_method(&mut self, method: Method) -> Result<()> {
+        self.cfg.method = method;
+        self.reset()
+    }
+
+    /// Changes spp, bounces or block size without resetting seeds (accumulation restarts).
+    pub fn set_quality(&mut self, spp: u32, bounces: u32, block: u32) -> Result<()> {
+        let cfg = RenderConfig { spp, bounces, block, ..self.cfg.clone() };
+        cfg.validate(&self.dev)?;
+        self.cfg = cfg;
+        self.accumulated = 0;
+        Ok(())
+    }
+
+    fn trace_params(&self) -> TraceParams {
+        let c = &self.cfg;
+        let basis = self.camera.basis(c.width as f32 / c.height as f32);
+        let m = c.method;
+        let n = self.assets.n;
+        let mut flags = 0;
+        if m == Method::White || c.frame_salt {
+            flags |= TRACE_FLAG_SALT_FRAME;
+        }
+        if m == Method::Sobol {
+            flags |= TRACE_FLAG_ADVANCE_INDEX;
+        }
+        let (mask_mode, mask_size, mask_frames, off) = match m {
+            Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),
+            Method::Stbn => (MASK_MODE_SPATIOTEMPORAL, self.assets.stbn_n, self.assets.stbn_frames, (0, 0)),
+            _ => (MASK_MODE_NONE, n, 1, (0, 0)),
+        };
+        TraceParams {
+            cam_origin: basis.position,
+            cam_forward: basis.forward,
+            cam_right: basis.right,
+            cam_up: basis.up,
+            width: c.width,
+            height: c.height,
+            stride: self.screen.stride(),
+            frame: self.frame as u32,
+            spp: c.spp,
+            max_bounces: c.bounces,
+            sampler: c.sampler.unwrap_or(m.default_sampler()) as u32,
+            flags,
+            mask_mode,
+            mask_size,
+            mask_frames,
+            mask_offset_x: off.0,
+            mask_offset_y: off.1,
+        }
+    }
+
+    /// Renders one frame: all passes in one submission; returns per-pass GPU times.
+    pub fn render_frame(&mut self) -> Result<FrameStats> {
+        let tp = self.trace_params();
+        let m = self.cfg.method;
+        let off = mask_offset(self.frame, self.assets.shift, self.assets.n);
+        let img = ImageParams {
+            width: self.cfg.width,
+            height: self.cfg.height,
+            count: self.accumulated,
+            exposure: self.cfg.exposure,
+        };
+        let (cur, next) = (self.current, 1 - self.current);
+        let mask = if m == Method::Stbn { &self.stbn } else { &self.mask };
+        self.rec.begin()?;
+        self.rec.begin_pass("trace")?;
+        self.image.trace(&mut self.rec, &tp, &self.scene, &self.seeds[cur], mask, &self.estimate)?;
+        if m.sorts() {
+            self.rec.begin_pass("sort")?;
+            let sp = self.screen.sort_params(self.cfg.block, off)?;
+            self.permute.sort_seeds(&mut self.rec, &sp, &self.estimate, &self.mask, &self.seeds[cur])?;
+        }
+        if m.retargets() {
+            self.rec.begin_pass("retarget")?;
+            let rp = self.screen.retarget_params(off);
+            self.permute.retarget_seeds(&mut self.rec, &rp, &self.table, &self.seeds[cur], &self.seeds[next])?;
+        }
+        self.rec.begin_pass("accumulate")?;
+        self.image.accumulate(&mut self.rec, &img, &self.estimate, &self.accum)?;
+        self.rec.begin_pass("tonemap")?;
+        self.image.tonemap(&mut self.rec, &img, &self.accum, &self.ldr)?;
+        let passes = self.rec.submit_and_wait()?;
+        if m.retargets() {
+            self.current = next;
+        }
+        let stats = FrameStats { frame: self.frame, passes };
+        self.frame += 1;
+        self.accumulated = self.accumulated.saturating_add(1);
+        Ok(stats)
+    }
+
+    /// The raw estimate of the last frame: (r, g, b, luminance) per pixel, row-major.
+    pub fn read_estimate(&self) -> Result<Vec<[f32; 4]>> {
+        Ok(self.estimate.read::<[f32; 4]>()?[..self.pixels()].to_vec())
+    }
+    /// The running mean since the last reset or camera move.
+    pub fn read_accum(&self) -> Result<Vec<[f32; 4]>> {
+        Ok(self.accum.read::<[f32; 4]>()?[..self.pixels()].to_vec())
+    }
+    /// The tonemapped accumulation as RGBA8 bytes.
+    pub fn read_ldr(&self) -> Result<Vec<u8>> {
+        let words = self.ldr.read::<u32>()?;
+        Ok(bytemuck::cast_slice(&words[..self.pixels()]).to_vec())
+    }
+    /// The current (padded) seed buffer.
+    pub fn read_seeds(&self) -> Result<Vec<u32>> {
+        Ok(self.seeds[self.current].read::<u32>()?[..self.screen.seed_count()].to_vec())
+    }
+    pub fn initial_seeds(&self) -> &[u32] {
+        &self.initial_seeds
+    }
+    pub fn screen(&self) -> Screen {
+        self.screen
+    }
+    fn pixels(&self) -> usize {
+        self.cfg.width as usize * self.cfg.height as usize
+    }
+}
+
+/// Per-frame mask offset of `mask-r2`: the R2 sequence scaled to the tile (rounded, which is
+/// fine here: no retarget table depends on it).
+pub fn r2_offset(frame: u64, n: u32) -> (u32, u32) {
+    let g = blueshift_sampling::r2::PLASTIC;
+    let t = frame as f64;
+    let fx = (0.5 + t / g).fract();
+    let fy = (0.5 + t / (g * g)).fract();
+    ((fx * n as f64) as u32 % n, (fy * n as f64) as u32 % n)
+}

@@ -1,0 +1,85 @@
+//! The methods Blueshift compares, and what each means for the passes.
+use blueshift_sampling::Sampler;
+
+/// A way of choosing per-pixel randomness over frames.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Fresh decorrelated randomness every frame: seed = hash(pixel seed, frame).
+    White,
+    /// Decorrelated seeds fixed for the whole sequence (the permutation methods' starting point).
+    WhiteFixed,
+    /// Owen-scrambled Sobol, fixed per-pixel scramble seeds, sample index advancing per frame.
+    Sobol,
+    /// Blue-noise mask (void-and-cluster) offsets the first dimensions, shifted by R2 per frame.
+    MaskR2,
+    /// Spatio-temporal blue-noise mask slices in the same role.
+    Stbn,
+    /// Sorting pass only.
+    Sort,
+    /// Sorting + retargeting (Heitz & Belcour 2019): the default.
+    SortRetarget,
+}
+
+impl Method {
+    pub const ALL: [Method; 7] = [
+        Method::White,
+        Method::WhiteFixed,
+        Method::Sobol,
+        Method::MaskR2,
+        Method::Stbn,
+        Method::Sort,
+        Method::SortRetarget,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::White => "white",
+            Method::WhiteFixed => "white-fixed",
+            Method::Sobol => "sobol",
+            Method::MaskR2 => "mask-r2",
+            Method::Stbn => "stbn",
+            Method::Sort => "sort",
+            Method::SortRetarget => "sort-retarget",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Method> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// All names, for error messages and `--help`.
+    pub fn names() -> String {
+        Self::ALL.map(|m| m.name()).join(", ")
+    }
+
+    /// The seeded sampler this method uses unless overridden.
+    pub fn default_sampler(self) -> Sampler {
+        match self {
+            Method::Sobol => Sampler::Sobol,
+            _ => Sampler::White,
+        }
+    }
+
+    /// Whether the sorting pass runs.
+    pub fn sorts(self) -> bool {
+        matches!(self, Method::Sort | Method::SortRetarget)
+    }
+
+    /// Whether the retargeting pass runs.
+    pub fn retargets(self) -> bool {
+        self == Method::SortRetarget
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Method::from_name(s).ok_or_else(|| format!("unknown method '{s}' (known: {})", Method::names()))
+    }
+}

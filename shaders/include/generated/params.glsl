@@ -1,0 +1,62 @@
+// GENERATED from Rust by blueshift-layout. Do not edit: regenerate with
+// `cargo run -p blueshift-headers -- --write`.
+#ifndef GENERATED_PARAMS_GLSL
+#define GENERATED_PARAMS_GLSL
+
+struct SortParams {
+    uint width; // offset 0, size 4
+    uint height; // offset 4, size 4
+    uint stride; // offset 8, size 4
+    uint block; // offset 12, size 4
+    uint mask_size; // offset 16, size 4
+    uint offset_x; // offset 20, size 4
+    uint offset_y; // offset 24, size 4
+};
+const uint SORT_PARAMS_SIZE = 28;
+
+struct RetargetParams {
+    uint padded_width; // offset 0, size 4
+    uint padded_height; // offset 4, size 4
+    uint mask_size; // offset 8, size 4
+    uint offset_x; // offset 12, size 4
+    uint offset_y; // offset 16, size 4
+};
+const uint RETARGET_PARAMS_SIZE = 20;
+
+struct TraceParams {
+    vec3 cam_origin; // offset 0, size 12
+    vec3 cam_forward; // offset 12, size 12
+    vec3 cam_right; // offset 24, size 12
+    vec3 cam_up; // offset 36, size 12
+    uint width; // offset 48, size 4
+    uint height; // offset 52, size 4
+    uint stride; // offset 56, size 4
+    uint frame; // offset 60, size 4
+    uint spp; // offset 64, size 4
+    uint max_bounces; // offset 68, size 4
+    uint sampler; // offset 72, size 4
+    uint flags; // offset 76, size 4
+    uint mask_mode; // offset 80, size 4
+    uint mask_size; // offset 84, size 4
+    uint mask_frames; // offset 88, size 4
+    uint mask_offset_x; // offset 92, size 4
+    uint mask_offset_y; // offset 96, size 4
+};
+const uint TRACE_PARAMS_SIZE = 100;
+
+struct ImageParams {
+    uint width; // offset 0, size 4
+    uint height; // offset 4, size 4
+    uint count; // offset 8, size 4
+    float exposure; // offset 12, size 4
+};
+const uint IMAGE_PARAMS_SIZE = 16;
+
+const uint TRACE_FLAG_SALT_FRAME = 1u;
+const uint TRACE_FLAG_ADVANCE_INDEX = 2u;
+const uint MASK_MODE_NONE = 0u;
+const uint MASK_MODE_2D = 1u;
+const uint MASK_MODE_SPATIOTEMPORAL = 2u;
+const uint MASK_DIMS = 9u;
+const uint DIMS_PER_BOUNCE = 7u;
+#endif

@@ -1,0 +1,25 @@
+#version 460
+// Retargeting pass: the seed at padded pixel x moves to x + D((x + o) mod N), toroidally on the
+// padded screen, so seeds sorted for mask t land where they suit mask t+1 (= mask t shifted by
+// the table's integer shift). A bijection because the padded screen tiles the mask exactly.
+// CPU twin: crates/permute/src/cpu.rs retarget_seeds_cpu.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+#include "generated/params.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(push_constant, scalar) uniform Push { RetargetParams p; };
+layout(set = 0, binding = 0, scalar) readonly buffer Table { ivec2 table[]; };  // D per mask texel
+layout(set = 0, binding = 1, scalar) readonly buffer SeedsIn { uint seeds_in[]; };
+layout(set = 0, binding = 2, scalar) writeonly buffer SeedsOut { uint seeds_out[]; };
+
+void main() {
+    uvec2 x = gl_GlobalInvocationID.xy;
+    if (x.x >= p.padded_width || x.y >= p.padded_height) return;
+    uvec2 u = (x + uvec2(p.offset_x, p.offset_y)) % p.mask_size;
+    ivec2 d = table[u.y * p.mask_size + u.x];
+    ivec2 size = ivec2(p.padded_width, p.padded_height);
+    // Displacements are within the retarget radius (< N <= size), so one wrap suffices.
+    ivec2 t = (ivec2(x) + d + size) % size;
+    seeds_out[t.y * p.padded_width + t.x] = seeds_in[x.y * p.padded_width + x.x];
+}

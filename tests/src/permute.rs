@@ -1,0 +1,264 @@
+//! Sorting and retargeting passes: GPU == CPU twin exactly, and the seed buffer stays a
+//! permutation of the initial seeds after every pass.
+use crate::Gpu;
+use blueshift_device::{Buffer, MemoryLocation};
+use blueshift_permute::{
+    PermutePasses, Screen, is_permutation_of, mask_offset, retarget_seeds_cpu, sort_seeds_cpu,
+};
+
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> u32 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 33) as u32
+    }
+    fn perm(&mut self, n: u32) -> Vec<u32> {
+        let mut m: Vec<u32> = (0..n).collect();
+        for i in (1..m.len()).rev() {
+            m.swap(i, self.next() as usize % (i + 1));
+        }
+        m
+    }
+}
+
+/// A random tile permutation with displacements <= r: disjoint random swaps within radius.
+fn random_table(n: u32, r: i32, rng: &mut Lcg) -> Vec<[i32; 2]> {
+    let mut table = vec![[0i32; 2]; (n * n) as usize];
+    let mut moved = vec![false; (n * n) as usize];
+    for u in rng.perm(n * n) {
+        let (dx, dy) = (
+            (rng.next() % (2 * r as u32 + 1)) as i32 - r,
+            (rng.next() % (2 * r as u32 + 1)) as i32 - r,
+        );
+        if dx * dx + dy * dy > r * r {
+            continue;
+        }
+        let (ux, uy) = ((u % n) as i32, (u / n) as i32);
+        let v =
+            (((uy + dy).rem_euclid(n as i32)) * n as i32 + (ux + dx).rem_euclid(n as i32)) as usize;
+        if moved[u as usize] || moved[v] || v == u as usize {
+            continue;
+        }
+        moved[u as usize] = true;
+        moved[v] = true;
+        table[u as usize] = [dx, dy];
+        table[v] = [-dx, -dy];
+    }
+    table
+}
+
+fn estimate(lum: &[f32]) -> Vec<[f32; 4]> {
+    lum.iter().map(|&l| [l, l, l, l]).collect()
+}
+
+fn gpu_frame(
+    gpu: &mut Gpu,
+    passes: &PermutePasses,
+    sc: &Screen,
+    block: u32,
+    frame: u64,
+    lum: &[f32],
+    mask: &Buffer,
+    table: &Buffer,
+    seeds: [&Buffer; 2],
+) {
+    let off = mask_offset(frame, (12, 9), sc.tile);
+    let est = Buffer::from_slice(gpu.dev(), "permute.estimate", &estimate(lum)).unwrap();
+    let rec = gpu.rec.as_mut().unwrap();
+    rec.begin().unwrap();
+    rec.begin_pass("permute.sort_seeds").unwrap();
+    passes
+        .sort_seeds(
+            rec,
+            &sc.sort_params(block, off).unwrap(),
+            &est,
+            mask,
+            seeds[0],
+        )
+        .unwrap();
+    rec.begin_pass("permute.retarget_seeds").unwrap();
+    passes
+        .retarget_seeds(rec, &sc.retarget_params(off), table, seeds[0], seeds[1])
+        .unwrap();
+    rec.submit_and_wait().unwrap();
+}
+
+/// Random estimates (with ties: values from a small set), random masks and tables, several
+/// block sizes and resolutions that are multiples of neither B nor N.
+#[test]
+fn sort_and_retarget_match_cpu_and_stay_permutations() {
+    let mut gpu = Gpu::new();
+    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let mut rng = Lcg(42);
+    for (w, h, n, block, frames) in [
+        (37, 23, 16, 2, 12),
+        (50, 41, 16, 3, 12),
+        (64, 64, 32, 4, 8),
+        (99, 61, 32, 8, 8),
+        (13, 7, 16, 8, 4),
+    ] {
+        let sc = Screen::new(w, h, n).unwrap();
+        let mask_data = rng.perm(n * n);
+        let table_data = random_table(n, 6, &mut rng);
+        let mask = Buffer::from_slice(gpu.dev(), "permute.mask", &mask_data).unwrap();
+        let table = Buffer::from_slice(gpu.dev(), "permute.table", &table_data).unwrap();
+        let init: Vec<u32> = (0..sc.seed_count() as u32)
+            .map(|i| i.wrapping_mul(2654435761))
+            .collect();
+        let mut a = Buffer::from_slice(gpu.dev(), "permute.seeds_a", &init).unwrap();
+        let b = Buffer::new(
+            gpu.dev(),
+            "permute.seeds_b",
+            a.size,
+            MemoryLocation::GpuToCpu,
+        )
+        .unwrap();
+        let mut cpu = init.clone();
+        for f in 0..frames {
+            let lum: Vec<f32> = (0..w * h)
+                .map(|_| (rng.next() % 50) as f32 * 0.25)
+                .collect();
+            gpu_frame(
+                &mut gpu,
+                &passes,
+                &sc,
+                block,
+                f,
+                &lum,
+                &mask,
+                &table,
+                [&a, &b],
+            );
+            let off = mask_offset(f, (12, 9), n);
+            sort_seeds_cpu(
+                &sc.sort_params(block, off).unwrap(),
+                &lum,
+                &mask_data,
+                &mut cpu,
+            );
+            assert_eq!(
+                a.read::<u32>().unwrap()[..cpu.len()],
+                cpu[..],
+                "sort {w}x{h} B={block} frame {f}"
+            );
+            cpu = retarget_seeds_cpu(&sc.retarget_params(off), &table_data, &cpu);
+            let got = b.read::<u32>().unwrap();
+            assert_eq!(
+                got[..cpu.len()],
+                cpu[..],
+                "retarget {w}x{h} B={block} frame {f}"
+            );
+            assert!(is_permutation_of(&cpu, &init));
+            a.write(0, &got[..cpu.len()]).unwrap();
+        }
+    }
+}
+
+/// Sorting an image equal to the mask is the identity; sorting a constant image sends the
+/// seed of in-block index k to the position of the k-th smallest mask value.
+#[test]
+fn sort_identity_and_constant_image() {
+    let mut gpu = Gpu::new();
+    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let mut rng = Lcg(5);
+    let (n, block) = (16u32, 4u32);
+    let sc = Screen::new(32, 32, n).unwrap();
+    let mask_data = rng.perm(n * n);
+    let mask = Buffer::from_slice(gpu.dev(), "permute.mask", &mask_data).unwrap();
+    let ident: Vec<[i32; 2]> = vec![[0, 0]; (n * n) as usize];
+    let table = Buffer::from_slice(gpu.dev(), "permute.table", &ident).unwrap();
+    let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
+    let off = mask_offset(3, (12, 9), n);
+    let mask_at = |x: u32, y: u32| mask_data[(((y + off.1) % n) * n + (x + off.0) % n) as usize];
+    let like_mask: Vec<f32> = (0..32 * 32)
+        .map(|i| mask_at(i % 32, i / 32) as f32)
+        .collect();
+    let a = Buffer::from_slice(gpu.dev(), "permute.seeds_a", &init).unwrap();
+    let b = Buffer::new(
+        gpu.dev(),
+        "permute.seeds_b",
+        a.size,
+        MemoryLocation::GpuToCpu,
+    )
+    .unwrap();
+    gpu_frame(
+        &mut gpu,
+        &passes,
+        &sc,
+        block,
+        3,
+        &like_mask,
+        &mask,
+        &table,
+        [&a, &b],
+    );
+    assert_eq!(
+        a.read::<u32>().unwrap(),
+        init,
+        "image == mask must not move seeds"
+    );
+
+    let a = Buffer::from_slice(gpu.dev(), "permute.seeds_a", &init).unwrap();
+    gpu_frame(
+        &mut gpu,
+        &passes,
+        &sc,
+        block,
+        3,
+        &[1.5; 32 * 32],
+        &mask,
+        &table,
+        [&a, &b],
+    );
+    let got = a.read::<u32>().unwrap();
+    for (bx, by) in [(0u32, 0u32), (4, 8), (28, 28)] {
+        let mut cells: Vec<(u32, u32)> = (0..16).map(|k| (bx + k % 4, by + k / 4)).collect();
+        cells.sort_by_key(|&(x, y)| mask_at(x, y));
+        for (k, &(x, y)) in cells.iter().enumerate() {
+            let (sx, sy) = (bx + k as u32 % 4, by + k as u32 / 4);
+            assert_eq!(got[(y * 32 + x) as usize], init[(sy * 32 + sx) as usize]);
+        }
+    }
+}
+
+/// 1,000 frames of random estimates: the buffer is a permutation after every frame.
+#[test]
+fn thousand_frames_stay_a_permutation() {
+    let mut gpu = Gpu::new();
+    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let mut rng = Lcg(9);
+    let (w, h, n) = (45u32, 29u32, 16u32);
+    let sc = Screen::new(w, h, n).unwrap();
+    let mask = Buffer::from_slice(gpu.dev(), "permute.mask", &rng.perm(n * n)).unwrap();
+    let table =
+        Buffer::from_slice(gpu.dev(), "permute.table", &random_table(n, 6, &mut rng)).unwrap();
+    let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
+    let bufs = [
+        Buffer::from_slice(gpu.dev(), "permute.seeds_a", &init).unwrap(),
+        Buffer::from_slice(gpu.dev(), "permute.seeds_b", &init).unwrap(),
+    ];
+    for f in 0..1000u64 {
+        let lum: Vec<f32> = (0..w * h).map(|_| rng.next() as f32).collect();
+        let (src, dst) = (&bufs[(f % 2) as usize], &bufs[1 - (f % 2) as usize]);
+        gpu_frame(
+            &mut gpu,
+            &passes,
+            &sc,
+            2 + (f % 7) as u32,
+            f,
+            &lum,
+            &mask,
+            &table,
+            [src, dst],
+        );
+        if f % 100 == 99 {
+            assert!(
+                is_permutation_of(&dst.read::<u32>().unwrap()[..init.len()], &init),
+                "frame {f}"
+            );
+        }
+    }
+}
