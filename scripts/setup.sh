@@ -8,7 +8,7 @@ set -euo pipefail
 PACKAGES=(
   libvulkan1 libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   libshaderc-dev glslang-dev spirv-tools glslc pkg-config g++ cmake
-  fontconfig fonts-dejavu-core
+  fontconfig fonts-dejavu-core libfontconfig1-dev
   xvfb x11-apps libx11-6 libxcursor1 libxrandr2 libxi6 libxkbcommon-x11-0
 )
 

@@ -49,7 +49,6 @@ fn main() {
             shaderc::EnvVersion::Vulkan1_2 as u32,
         );
         opts.set_optimization_level(shaderc::OptimizationLevel::Performance);
-        opts.set_generate_debug_info();
         let inc = include_dir.clone();
         opts.set_include_callback(move |requested, _ty, requester, _depth| {
             let here = Path::new(requester).parent().map(Path::to_path_buf).unwrap_or_default();

@@ -16,7 +16,7 @@ float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
         uint rank = mask[(layer * n + q.y) * n + q.x];
         return fract((float(rank) + 0.5) / float(n * n) + float(s) * GOLDEN);
     }
-    return sample_1d(pc.sampler, seed, index, dim);
+    return sample_1d(pc.sampler_kind, seed, index, dim);
 }
 
 float power_heuristic(float a, float b) {
@@ -57,7 +57,7 @@ Surface surface_at(Ray ray, Hit hit) {
 BrdfInput material_at(uint index, vec2 uv) {
     GpuMaterial m = materials[index];
     BrdfInput b;
-    b.base = m.base_color.rgb;
+    b.base = vec3(m.base_color[0], m.base_color[1], m.base_color[2]);
     b.metallic = m.metallic;
     b.roughness = m.roughness;
     if (m.base_color_tex >= 0) b.base *= srgb_to_linear(texture_raw(m.base_color_tex, uv).rgb);
@@ -122,7 +122,7 @@ vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
 
 vec3 trace_path(uvec2 px, uint seed, uint index, uint s) {
     vec2 jitter = vec2(sample_dim(px, seed, index, s, 0u), sample_dim(px, seed, index, s, 1u));
-    vec2 ndc = (vec2(px) + jitter) / vec2(pc.width, pc.height) * 2.0 - 1.0;
+    vec2 ndc = (vec2(px) + pc.view_offset + jitter) / pc.view_size * 2.0 - 1.0;
     vec3 dir = normalize(pc.cam_forward + ndc.x * pc.cam_right - ndc.y * pc.cam_up);
     Ray ray = Ray(pc.cam_origin, 0.0, dir, 1e30);
     vec3 l = vec3(0.0), throughput = vec3(1.0);

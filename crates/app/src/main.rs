@@ -1,4 +1,6 @@
 //! `blueshift`: the command-line entry point.
+mod bench;
+mod eval;
 mod info;
 mod output;
 mod render;
@@ -25,6 +27,10 @@ enum Command {
     Info(info::InfoArgs),
     /// Render frames of a scene headless to PNG (tonemapped) and EXR (linear raw estimate).
     Render(render::RenderArgs),
+    /// Compare methods against references and write report.md/report.json/figures.
+    Eval(eval::EvalArgs),
+    /// Throughput of the path tracer (Msamples/s, Mrays/s) from GPU timestamps.
+    Bench(bench::BenchArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -32,6 +38,8 @@ fn main() -> std::process::ExitCode {
     let result = match &cli.command {
         Command::Info(args) => info::run(&cli_gpu(&cli), args),
         Command::Render(args) => render::run(&cli_gpu(&cli), args),
+        Command::Eval(args) => eval::run(&cli_gpu(&cli), args),
+        Command::Bench(args) => bench::run(&cli_gpu(&cli), args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,
@@ -59,7 +67,10 @@ fn cli_gpu(cli: &Cli) -> GpuOpts {
 impl GpuOpts {
     /// A headless device with these options.
     pub fn device(&self) -> anyhow::Result<blueshift_device::Device> {
-        Ok(blueshift_device::headless(self.validation, self.device_index)?)
+        Ok(blueshift_device::headless(
+            self.validation,
+            self.device_index,
+        )?)
     }
 }
 

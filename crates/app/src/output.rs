@@ -6,8 +6,14 @@ use std::path::Path;
 
 /// Writes `bytes` to `path` atomically.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().context("output path has no file name")?.to_string_lossy();
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .context("output path has no file name")?
+        .to_string_lossy();
     let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
     let result = (|| -> std::io::Result<()> {
         let mut f = std::fs::File::create(&tmp)?;
@@ -40,7 +46,8 @@ pub fn exr_rgb32f(width: u32, height: u32, rgba: &[[f32; 4]]) -> Result<Vec<u8>>
 
 /// Creates `dir` (and parents) and checks it is writable, naming it on failure.
 pub fn prepare_dir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create output directory {}", dir.display()))?;
     let probe = dir.join(format!(".blueshift-write-test.{}", std::process::id()));
     std::fs::write(&probe, b"")
         .with_context(|| format!("output directory {} is not writable", dir.display()))?;
@@ -57,7 +64,10 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("bs-out-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         write_atomic(&dir.join("a.bin"), b"hello").unwrap();
-        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("a.bin")]);
         assert!(write_atomic(&dir.join("missing/b.bin"), b"x").is_err());
         std::fs::remove_dir_all(&dir).unwrap();

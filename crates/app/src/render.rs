@@ -2,7 +2,9 @@
 use crate::GpuOpts;
 use crate::output::{exr_rgb32f, png_rgba8, prepare_dir, write_atomic};
 use anyhow::{Context, Result, bail};
-use blueshift_render::{CameraPath, Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
+use blueshift_render::{
+    CameraPath, Method, MethodAssets, RenderConfig, Renderer, default_assets_dir,
+};
 use blueshift_sampling::Sampler;
 use blueshift_scene::Scene;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -43,7 +45,7 @@ pub struct RenderArgs {
     /// white, white-fixed, sobol, mask-r2, stbn, sort, sort-retarget.
     #[arg(long, default_value = "sort-retarget")]
     pub method: String,
-    /// static, pan:PX (px/frame), orbit:DEG (deg/frame), or a keyframe JSON file.
+    /// static, pan:PX (image-space pan, px/frame), orbit:DEG (deg/frame), or a keyframe JSON file.
     #[arg(long, default_value = "static")]
     pub camera_path: String,
     /// Experiment: hash the frame into fixed seeds (breaks temporal correlation).
@@ -58,7 +60,9 @@ pub struct RenderArgs {
 
 /// Resolves a preset name to the bundled file, else treats it as a path.
 pub fn scene_path(spec: &str) -> PathBuf {
-    let preset = default_assets_dir().join("scenes").join(format!("{spec}.gltf"));
+    let preset = default_assets_dir()
+        .join("scenes")
+        .join(format!("{spec}.gltf"));
     if !spec.contains('/') && !spec.contains('.') && preset.exists() {
         preset
     } else {
@@ -68,7 +72,12 @@ pub fn scene_path(spec: &str) -> PathBuf {
 
 pub fn load_scene(spec: &str) -> Result<Scene> {
     let path = scene_path(spec);
-    let scene = Scene::load(&path).with_context(|| format!("loading scene {}", path.display()))?;
+    let opts = blueshift_scene::LoadOptions {
+        quiet: true,
+        ..Default::default()
+    };
+    let scene = Scene::load_with(&path, &opts)
+        .with_context(|| format!("loading scene {}", path.display()))?;
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }
@@ -79,7 +88,10 @@ pub fn config(a: &SceneArgs, method: &str) -> Result<RenderConfig> {
     let method: Method = method.parse().map_err(anyhow::Error::msg)?;
     let sampler = match &a.sampler {
         None => None,
-        Some(s) => Some(Sampler::from_name(s).with_context(|| format!("unknown sampler '{s}' (known: white, sobol, r2)"))?),
+        Some(s) => Some(
+            Sampler::from_name(s)
+                .with_context(|| format!("unknown sampler '{s}' (known: white, sobol, r2)"))?,
+        ),
     };
     Ok(RenderConfig {
         spp: a.spp,
@@ -110,9 +122,13 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
     let base = scene.camera_or_default();
     let bar = ProgressBar::new(args.frames as u64);
-    bar.set_style(ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {msg} eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar()));
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {msg} eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
     for f in 0..args.frames {
-        r.set_camera(path.camera(&base, f, cfg.height));
+        r.set_camera(path.camera(&base, f));
+        r.set_view_offset(path.view_offset(f));
         let stats = r.render_frame()?;
         bar.set_message(format!("trace {:.1} ms", stats.ms("trace")));
         bar.inc(1);
@@ -122,13 +138,27 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     }
     bar.finish();
     crate::check_validation(&dev)?;
-    println!("wrote {} to {}", if args.all_frames { "all frames" } else { "the last frame" }, args.out.display());
+    println!(
+        "wrote {} to {}",
+        if args.all_frames {
+            "all frames"
+        } else {
+            "the last frame"
+        },
+        args.out.display()
+    );
     Ok(())
 }
 
 fn write_frame(r: &Renderer, dir: &Path, f: u32) -> Result<()> {
     let (w, h) = (r.config().width, r.config().height);
-    write_atomic(&dir.join(format!("frame_{f:05}.png")), &png_rgba8(w, h, &r.read_ldr()?)?)?;
-    write_atomic(&dir.join(format!("frame_{f:05}.exr")), &exr_rgb32f(w, h, &r.read_estimate()?)?)?;
+    write_atomic(
+        &dir.join(format!("frame_{f:05}.png")),
+        &png_rgba8(w, h, &r.read_ldr()?)?,
+    )?;
+    write_atomic(
+        &dir.join(format!("frame_{f:05}.exr")),
+        &exr_rgb32f(w, h, &r.read_estimate()?)?,
+    )?;
     Ok(())
 }

@@ -8,6 +8,7 @@ pub fn all() -> Vec<(&'static str, String)> {
     use blueshift_layout::{Header, params};
     vec![
         ("sobol", blueshift_sampling::glsl_header()),
+        ("scene", blueshift_scene::glsl_header()),
         (
             "params",
             Header::new()

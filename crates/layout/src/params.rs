@@ -34,7 +34,7 @@ gpu_struct! {
 }
 
 gpu_struct! {
-    /// Push constants of `trace/trace` (100 bytes: fits the 128-byte minimum limit).
+    /// Push constants of `trace/trace` (116 bytes: fits the 128-byte minimum limit).
     pub struct TraceParams {
         pub cam_origin: glam::Vec3,
         pub cam_forward: glam::Vec3,
@@ -50,7 +50,7 @@ gpu_struct! {
         /// Maximum path vertices after the camera (1 = direct light only).
         pub max_bounces: u32,
         /// `SAMPLER_*` constant of sampling.glsl.
-        pub sampler: u32,
+        pub sampler_kind: u32,
         /// `TRACE_FLAG_*` bits.
         pub flags: u32,
         /// `MASK_MODE_*`: whether the first dimensions come from a blue-noise mask.
@@ -60,6 +60,11 @@ gpu_struct! {
         pub mask_frames: u32,
         pub mask_offset_x: u32,
         pub mask_offset_y: u32,
+        /// Sensor shift in pixels: pixel p samples the view at p + view_offset.
+        pub view_offset: glam::Vec2,
+        /// Nominal view size in pixels that maps onto NDC -1..1 (the image may be wider, e.g.
+        /// a reference covering a whole pan).
+        pub view_size: glam::Vec2,
     }
 }
 

@@ -61,7 +61,11 @@ impl MethodAssets {
         Ok(Self {
             n: m.n as u32,
             mask: m.ranks.iter().map(|&r| r as u32).collect(),
-            table: t.offsets.iter().map(|&(dx, dy)| [dx as i32, dy as i32]).collect(),
+            table: t
+                .offsets
+                .iter()
+                .map(|&(dx, dy)| [dx as i32, dy as i32])
+                .collect(),
             shift: (t.shift.0 as u32, t.shift.1 as u32),
             stbn_n: v.n as u32,
             stbn_frames: v.t as u32,

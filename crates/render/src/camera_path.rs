@@ -12,10 +12,16 @@ use std::path::Path;
 #[derive(Debug, Clone, PartialEq)]
 pub enum CameraPath {
     Static,
-    /// Sideways pan moving points at the target distance by this many pixels per frame.
-    Pan { px_per_frame: f32 },
+    /// Image-space pan: the view window slides this many pixels per frame to the right (a
+    /// sensor shift: every point moves exactly the same amount, no parallax), so integer pans
+    /// have exact motion vectors and one wide reference image covers all frames.
+    Pan {
+        px_per_frame: f32,
+    },
     /// Orbit around the target by this many degrees per frame.
-    Orbit { degrees_per_frame: f32 },
+    Orbit {
+        degrees_per_frame: f32,
+    },
     Keyframes(Vec<Keyframe>),
 }
 
@@ -35,19 +41,27 @@ struct PathFile {
 impl CameraPath {
     /// Parses `static`, `pan[:PX]`, `orbit[:DEG]` or a path to a keyframe file.
     pub fn parse(spec: &str) -> Result<CameraPath, String> {
-        let (name, arg) = spec.split_once(':').map_or((spec, None), |(a, b)| (a, Some(b)));
+        let (name, arg) = spec
+            .split_once(':')
+            .map_or((spec, None), |(a, b)| (a, Some(b)));
         let number = |default: f32| -> Result<f32, String> {
             arg.map_or(Ok(default), |a| {
                 a.parse::<f32>()
                     .ok()
                     .filter(|v| v.is_finite() && v.abs() <= 1000.0)
-                    .ok_or_else(|| format!("camera path '{spec}': '{a}' is not a number in -1000..=1000"))
+                    .ok_or_else(|| {
+                        format!("camera path '{spec}': '{a}' is not a number in -1000..=1000")
+                    })
             })
         };
         match name {
             "static" => Ok(CameraPath::Static),
-            "pan" => Ok(CameraPath::Pan { px_per_frame: number(1.0)? }),
-            "orbit" => Ok(CameraPath::Orbit { degrees_per_frame: number(0.5)? }),
+            "pan" => Ok(CameraPath::Pan {
+                px_per_frame: number(1.0)?,
+            }),
+            "orbit" => Ok(CameraPath::Orbit {
+                degrees_per_frame: number(0.5)?,
+            }),
             _ => Self::load(Path::new(spec)),
         }
     }
@@ -55,7 +69,10 @@ impl CameraPath {
     /// Loads a keyframe file.
     pub fn load(path: &Path) -> Result<CameraPath, String> {
         let text = std::fs::read_to_string(path).map_err(|e| {
-            format!("camera path '{}': {e} (presets: static, pan:PX, orbit:DEG)", path.display())
+            format!(
+                "camera path '{}': {e} (presets: static, pan:PX, orbit:DEG)",
+                path.display()
+            )
         })?;
         let file: PathFile = serde_json::from_str(&text)
             .map_err(|e| format!("camera path '{}': {e}", path.display()))?;
@@ -65,7 +82,10 @@ impl CameraPath {
         }
         for w in k.windows(2) {
             if w[1].frame <= w[0].frame {
-                return Err(format!("camera path '{}': keyframe frames must increase", path.display()));
+                return Err(format!(
+                    "camera path '{}': keyframe frames must increase",
+                    path.display()
+                ));
             }
         }
         for kf in k {
@@ -91,24 +111,28 @@ impl CameraPath {
         }
     }
 
-    /// The camera at `frame` for a base camera and image height in pixels.
-    pub fn camera(&self, base: &Camera, frame: u32, height: u32) -> Camera {
+    /// Sensor shift (pixels) at `frame`: non-zero only for pans.
+    pub fn view_offset(&self, frame: u32) -> (f32, f32) {
+        match self {
+            CameraPath::Pan { px_per_frame } => (px_per_frame * frame as f32, 0.0),
+            _ => (0.0, 0.0),
+        }
+    }
+
+    /// The camera at `frame` for a base camera.
+    pub fn camera(&self, base: &Camera, frame: u32) -> Camera {
         match self {
             CameraPath::Static => *base,
-            CameraPath::Pan { px_per_frame } => {
-                let dist = (base.target - base.position).length();
-                // World units per pixel at the target distance.
-                let per_px = 2.0 * (base.yfov * 0.5).tan() * dist / height.max(1) as f32;
-                let right = base.basis(1.0).right.normalize_or_zero();
-                let shift = right * (px_per_frame * per_px * frame as f32);
-                Camera { position: base.position + shift, target: base.target + shift, ..*base }
-            }
+            CameraPath::Pan { .. } => *base,
             CameraPath::Orbit { degrees_per_frame } => {
                 let angle = (degrees_per_frame * frame as f32).to_radians();
                 let offset = base.position - base.target;
                 let axis = base.up.normalize_or_zero();
                 let rotated = glam::Quat::from_axis_angle(axis, angle) * offset;
-                Camera { position: base.target + rotated, ..*base }
+                Camera {
+                    position: base.target + rotated,
+                    ..*base
+                }
             }
             CameraPath::Keyframes(k) => interpolate(k, frame),
         }
@@ -144,36 +168,54 @@ mod tests {
     use super::*;
 
     fn base() -> Camera {
-        Camera { position: Vec3::new(0.0, 0.0, 4.0), target: Vec3::ZERO, up: Vec3::Y, yfov: 0.7 }
+        Camera {
+            position: Vec3::new(0.0, 0.0, 4.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            yfov: 0.7,
+        }
     }
 
     #[test]
     fn presets_parse() {
         assert_eq!(CameraPath::parse("static").unwrap(), CameraPath::Static);
-        assert_eq!(CameraPath::parse("pan:8").unwrap(), CameraPath::Pan { px_per_frame: 8.0 });
+        assert_eq!(
+            CameraPath::parse("pan:8").unwrap(),
+            CameraPath::Pan { px_per_frame: 8.0 }
+        );
         assert!(CameraPath::parse("pan:abc").is_err());
-        assert!(CameraPath::parse("/nonexistent/path.json").unwrap_err().contains("presets"));
+        assert!(
+            CameraPath::parse("/nonexistent/path.json")
+                .unwrap_err()
+                .contains("presets")
+        );
     }
 
     #[test]
-    fn pan_moves_the_target_by_the_requested_pixels() {
+    fn pan_shifts_the_view_not_the_camera() {
         let p = CameraPath::Pan { px_per_frame: 2.0 };
-        let c = p.camera(&base(), 10, 100);
-        // Project the original target into the new camera: it moved 20 px to the left.
-        let b = c.basis(1.0);
-        let d = (Vec3::ZERO - c.position).normalize();
-        let x_ndc = d.dot(b.right.normalize()) / d.dot(b.forward) / b.right.length();
-        let px = x_ndc * 50.0;
-        assert!((px + 20.0).abs() < 1e-3, "{px}");
+        assert_eq!(p.camera(&base(), 10), base());
+        assert_eq!(p.view_offset(10), (20.0, 0.0));
+        assert_eq!(CameraPath::Static.view_offset(10), (0.0, 0.0));
     }
 
     #[test]
     fn keyframes_interpolate_linearly() {
         let k = vec![
-            Keyframe { frame: 0, position: [0.0, 0.0, 4.0], target: [0.0; 3], yfov_degrees: 40.0 },
-            Keyframe { frame: 10, position: [2.0, 0.0, 4.0], target: [0.0; 3], yfov_degrees: 60.0 },
+            Keyframe {
+                frame: 0,
+                position: [0.0, 0.0, 4.0],
+                target: [0.0; 3],
+                yfov_degrees: 40.0,
+            },
+            Keyframe {
+                frame: 10,
+                position: [2.0, 0.0, 4.0],
+                target: [0.0; 3],
+                yfov_degrees: 60.0,
+            },
         ];
-        let c = CameraPath::Keyframes(k).camera(&base(), 5, 100);
+        let c = CameraPath::Keyframes(k).camera(&base(), 5);
         assert!((c.position.x - 1.0).abs() < 1e-6);
         assert!((c.yfov.to_degrees() - 50.0).abs() < 1e-4);
     }

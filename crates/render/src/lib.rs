@@ -71,6 +71,9 @@ pub struct RenderConfig {
     /// Seeds the initial seed map (different sequences for the same settings).
     pub sequence: u32,
     pub exposure: f32,
+    /// Nominal view size mapping onto the camera's field of view; `None` = (width, height).
+    /// A wider image with the nominal size of the frames renders a whole pan at once.
+    pub view_size: Option<(u32, u32)>,
 }
 
 impl RenderConfig {
@@ -86,6 +89,7 @@ impl RenderConfig {
             frame_salt: false,
             sequence: 0,
             exposure: 1.0,
+            view_size: None,
         }
     }
 
@@ -94,7 +98,10 @@ impl RenderConfig {
         let max = dev.info().max_image_dimension_2d.min(16384);
         let bad = |m: String| Err(RenderError::Invalid(m));
         if self.width == 0 || self.height == 0 || self.width > max || self.height > max {
-            return bad(format!("resolution {}x{} is outside 1..={max} per side", self.width, self.height));
+            return bad(format!(
+                "resolution {}x{} is outside 1..={max} per side",
+                self.width, self.height
+            ));
         }
         if !(1..=4096).contains(&self.spp) {
             return bad(format!("spp {} is outside 1..=4096", self.spp));
@@ -106,7 +113,10 @@ impl RenderConfig {
             return bad(format!("block size {} is outside 2..=8", self.block));
         }
         if !self.exposure.is_finite() || self.exposure <= 0.0 {
-            return bad(format!("exposure {} must be a positive number", self.exposure));
+            return bad(format!(
+                "exposure {} must be a positive number",
+                self.exposure
+            ));
         }
         let bytes = self.width as u64 * self.height as u64 * 16;
         if bytes > dev.info().max_storage_buffer_range {
@@ -132,7 +142,11 @@ pub struct FrameStats {
 impl FrameStats {
     /// Milliseconds of the pass named `name` (0 if it did not run).
     pub fn ms(&self, name: &str) -> f64 {
-        self.passes.iter().filter(|p| p.name == name).map(|p| p.ms).sum()
+        self.passes
+            .iter()
+            .filter(|p| p.name == name)
+            .map(|p| p.ms)
+            .sum()
     }
 }
 
@@ -156,13 +170,17 @@ pub struct Renderer {
     table: Buffer,
     assets: MethodAssets,
     camera: Camera,
+    view_offset: (f32, f32),
     frame: u64,
     accumulated: u32,
 }
 
 impl std::fmt::Debug for Renderer {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Renderer").field("cfg", &self.cfg).field("frame", &self.frame).finish()
+        f.debug_struct("Renderer")
+            .field("cfg", &self.cfg)
+            .field("frame", &self.frame)
+            .finish()
     }
 }
 
@@ -174,9 +192,14 @@ pub fn initial_seeds(count: usize, sequence: u32) -> Vec<u32> {
 }
 
 impl Renderer {
-    pub fn new(dev: &Device, scene: &Scene, assets: &MethodAssets, cfg: RenderConfig) -> Result<Self> {
+    pub fn new(
+        dev: &Device,
+        scene: &Scene,
+        assets: &MethodAssets,
+        cfg: RenderConfig,
+    ) -> Result<Self> {
         cfg.validate(dev)?;
-        let gpu_scene = SceneGpu::build(scene).map_err(|e| RenderError::Scene(e.to_string()))?;
+        let gpu_scene = SceneGpu::build(scene);
         let scene_buffers = SceneBuffers::new(dev, &gpu_scene)?;
         let screen = Screen::new(cfg.width, cfg.height, assets.n)?;
         let initial = initial_seeds(screen.seed_count(), cfg.sequence);
@@ -204,6 +227,7 @@ impl Renderer {
             table: Buffer::from_slice(dev, "assets.retarget", &assets.table)?,
             assets: assets.clone(),
             camera: scene.camera_or_default(),
+            view_offset: (0.0, 0.0),
             frame: 0,
             accumulated: 0,
             cfg,
@@ -232,6 +256,14 @@ impl Renderer {
         }
     }
 
+    /// Shifts the view window by `offset` pixels (image-space pan); restarts accumulation.
+    pub fn set_view_offset(&mut self, offset: (f32, f32)) {
+        if offset != self.view_offset {
+            self.view_offset = offset;
+            self.accumulated = 0;
+        }
+    }
+
     /// Restarts the sequence: initial seeds, frame 0, empty accumulation.
     pub fn reset(&mut self) -> Result<()> {
         for s in &mut self.seeds {
@@ -251,7 +283,12 @@ impl Renderer {
 
     /// Changes spp, bounces or block size without resetting seeds (accumulation restarts).
     pub fn set_quality(&mut self, spp: u32, bounces: u32, block: u32) -> Result<()> {
-        let cfg = RenderConfig { spp, bounces, block, ..self.cfg.clone() };
+        let cfg = RenderConfig {
+            spp,
+            bounces,
+            block,
+            ..self.cfg.clone()
+        };
         cfg.validate(&self.dev)?;
         self.cfg = cfg;
         self.accumulated = 0;
@@ -260,7 +297,8 @@ impl Renderer {
 
     fn trace_params(&self) -> TraceParams {
         let c = &self.cfg;
-        let basis = self.camera.basis(c.width as f32 / c.height as f32);
+        let (vw, vh) = c.view_size.unwrap_or((c.width, c.height));
+        let basis = self.camera.basis(vw as f32 / vh as f32);
         let m = c.method;
         let n = self.assets.n;
         let mut flags = 0;
@@ -272,7 +310,12 @@ impl Renderer {
         }
         let (mask_mode, mask_size, mask_frames, off) = match m {
             Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),
-            Method::Stbn => (MASK_MODE_SPATIOTEMPORAL, self.assets.stbn_n, self.assets.stbn_frames, (0, 0)),
+            Method::Stbn => (
+                MASK_MODE_SPATIOTEMPORAL,
+                self.assets.stbn_n,
+                self.assets.stbn_frames,
+                (0, 0),
+            ),
             _ => (MASK_MODE_NONE, n, 1, (0, 0)),
         };
         TraceParams {
@@ -286,13 +329,15 @@ impl Renderer {
             frame: self.frame as u32,
             spp: c.spp,
             max_bounces: c.bounces,
-            sampler: c.sampler.unwrap_or(m.default_sampler()) as u32,
+            sampler_kind: c.sampler.unwrap_or(m.default_sampler()) as u32,
             flags,
             mask_mode,
             mask_size,
             mask_frames,
             mask_offset_x: off.0,
             mask_offset_y: off.1,
+            view_offset: glam::Vec2::new(self.view_offset.0, self.view_offset.1),
+            view_size: glam::Vec2::new(vw as f32, vh as f32),
         }
     }
 
@@ -308,29 +353,57 @@ impl Renderer {
             exposure: self.cfg.exposure,
         };
         let (cur, next) = (self.current, 1 - self.current);
-        let mask = if m == Method::Stbn { &self.stbn } else { &self.mask };
+        let mask = if m == Method::Stbn {
+            &self.stbn
+        } else {
+            &self.mask
+        };
         self.rec.begin()?;
         self.rec.begin_pass("trace")?;
-        self.image.trace(&mut self.rec, &tp, &self.scene, &self.seeds[cur], mask, &self.estimate)?;
+        self.image.trace(
+            &mut self.rec,
+            &tp,
+            &self.scene,
+            &self.seeds[cur],
+            mask,
+            &self.estimate,
+        )?;
         if m.sorts() {
             self.rec.begin_pass("sort")?;
             let sp = self.screen.sort_params(self.cfg.block, off)?;
-            self.permute.sort_seeds(&mut self.rec, &sp, &self.estimate, &self.mask, &self.seeds[cur])?;
+            self.permute.sort_seeds(
+                &mut self.rec,
+                &sp,
+                &self.estimate,
+                &self.mask,
+                &self.seeds[cur],
+            )?;
         }
         if m.retargets() {
             self.rec.begin_pass("retarget")?;
             let rp = self.screen.retarget_params(off);
-            self.permute.retarget_seeds(&mut self.rec, &rp, &self.table, &self.seeds[cur], &self.seeds[next])?;
+            self.permute.retarget_seeds(
+                &mut self.rec,
+                &rp,
+                &self.table,
+                &self.seeds[cur],
+                &self.seeds[next],
+            )?;
         }
         self.rec.begin_pass("accumulate")?;
-        self.image.accumulate(&mut self.rec, &img, &self.estimate, &self.accum)?;
+        self.image
+            .accumulate(&mut self.rec, &img, &self.estimate, &self.accum)?;
         self.rec.begin_pass("tonemap")?;
-        self.image.tonemap(&mut self.rec, &img, &self.accum, &self.ldr)?;
+        self.image
+            .tonemap(&mut self.rec, &img, &self.accum, &self.ldr)?;
         let passes = self.rec.submit_and_wait()?;
         if m.retargets() {
             self.current = next;
         }
-        let stats = FrameStats { frame: self.frame, passes };
+        let stats = FrameStats {
+            frame: self.frame,
+            passes,
+        };
         self.frame += 1;
         self.accumulated = self.accumulated.saturating_add(1);
         Ok(stats)

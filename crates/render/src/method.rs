@@ -80,6 +80,7 @@ impl std::fmt::Display for Method {
 impl std::str::FromStr for Method {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        Method::from_name(s).ok_or_else(|| format!("unknown method '{s}' (known: {})", Method::names()))
+        Method::from_name(s)
+            .ok_or_else(|| format!("unknown method '{s}' (known: {})", Method::names()))
     }
 }

@@ -16,9 +16,20 @@ impl std::fmt::Debug for ImagePasses {
     }
 }
 
-fn pipeline(dev: &Device, name: &str, bindings: &[Binding], push: usize) -> Result<ComputePipeline> {
+fn pipeline(
+    dev: &Device,
+    name: &str,
+    bindings: &[Binding],
+    push: usize,
+) -> Result<ComputePipeline> {
     let spirv = blueshift_shaders::require(name).map_err(RenderError::Invalid)?;
-    Ok(ComputePipeline::new(dev, name, &spirv, bindings, push as u32)?)
+    Ok(ComputePipeline::new(
+        dev,
+        name,
+        &spirv,
+        bindings,
+        push as u32,
+    )?)
 }
 
 const TRACE_BINDINGS: [Binding; 11] = [
@@ -39,11 +50,19 @@ impl ImagePasses {
     pub fn new(dev: &Device) -> Result<Self> {
         let image = size_of::<ImageParams>();
         Ok(Self {
-            trace: pipeline(dev, "trace/trace", &TRACE_BINDINGS, size_of::<TraceParams>())?,
+            trace: pipeline(
+                dev,
+                "trace/trace",
+                &TRACE_BINDINGS,
+                size_of::<TraceParams>(),
+            )?,
             accumulate: pipeline(
                 dev,
                 "trace/accumulate",
-                &[Binding::storage(0, "estimate"), Binding::storage(1, "accum")],
+                &[
+                    Binding::storage(0, "estimate"),
+                    Binding::storage(1, "accum"),
+                ],
                 image,
             )?,
             tonemap: pipeline(
@@ -88,16 +107,38 @@ impl ImagePasses {
     }
 
     /// Records the running-mean accumulation.
-    pub fn accumulate(&self, rec: &mut Recorder, p: &ImageParams, estimate: &Buffer, accum: &Buffer) -> Result<()> {
+    pub fn accumulate(
+        &self,
+        rec: &mut Recorder,
+        p: &ImageParams,
+        estimate: &Buffer,
+        accum: &Buffer,
+    ) -> Result<()> {
         let groups = [(p.width * p.height).div_ceil(64), 1, 1];
-        rec.dispatch(&self.accumulate, &[estimate.into(), accum.into()], bytemuck::bytes_of(p), groups)?;
+        rec.dispatch(
+            &self.accumulate,
+            &[estimate.into(), accum.into()],
+            bytemuck::bytes_of(p),
+            groups,
+        )?;
         Ok(())
     }
 
     /// Records the sRGB tonemap of `source` into packed RGBA8.
-    pub fn tonemap(&self, rec: &mut Recorder, p: &ImageParams, source: &Buffer, ldr: &Buffer) -> Result<()> {
+    pub fn tonemap(
+        &self,
+        rec: &mut Recorder,
+        p: &ImageParams,
+        source: &Buffer,
+        ldr: &Buffer,
+    ) -> Result<()> {
         let groups = [(p.width * p.height).div_ceil(64), 1, 1];
-        rec.dispatch(&self.tonemap, &[source.into(), ldr.into()], bytemuck::bytes_of(p), groups)?;
+        rec.dispatch(
+            &self.tonemap,
+            &[source.into(), ldr.into()],
+            bytemuck::bytes_of(p),
+            groups,
+        )?;
         Ok(())
     }
 }

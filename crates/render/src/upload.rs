@@ -17,7 +17,9 @@ pub struct SceneBuffers {
 
 impl std::fmt::Debug for SceneBuffers {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SceneBuffers").field("nodes", &self.nodes.size).finish_non_exhaustive()
+        f.debug_struct("SceneBuffers")
+            .field("nodes", &self.nodes.size)
+            .finish_non_exhaustive()
     }
 }
 
@@ -25,7 +27,9 @@ impl SceneBuffers {
     /// Uploads `scene`, first checking every array against the device's storage-buffer range.
     pub fn new(dev: &Device, scene: &SceneGpu) -> Result<Self> {
         let limit = dev.info().max_storage_buffer_range;
-        scene.check_limits(limit).map_err(|e| RenderError::Scene(e.to_string()))?;
+        scene
+            .check_limits(limit)
+            .map_err(|e| RenderError::Scene(e.to_string()))?;
         Ok(Self {
             nodes: Buffer::from_slice(dev, "scene.bvh_nodes", &scene.nodes)?,
             triangles: Buffer::from_slice(dev, "scene.bvh_triangles", &scene.triangles)?,

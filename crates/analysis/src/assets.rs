@@ -1,0 +1,434 @@
+//! Readers and writers of the precomputed assets (tools/README.md has the byte layouts).
+//!
+//! * **Mask** (`.r16`): `n * n` little-endian `u16` ranks, row-major (`y * n + x`), no header.
+//!   `n` is inferred as `sqrt(len / 2)` and must be a power of two in `2..=256`; the ranks
+//!   must be a permutation of `0..n*n`.
+//! * **Spatio-temporal mask** (`.r16`): `t` slices of `n * n` ranks, slice-major
+//!   (`(s * n + y) * n + x`), no header; `n` is given by the caller (file names carry it,
+//!   e.g. `stbn64x32.r16`). Each slice is a permutation of `0..n*n`.
+//! * **Retarget table** (`.bin`): a 16-byte header, then `n * n` pairs of `i8` `(dx, dy)`
+//!   indexed by mask coordinate `u = (x, y)` at `y * n + x`; see [`RetargetTable`].
+
+use std::path::Path;
+
+use crate::{Error, Gray, Result, write_atomic};
+
+/// Magic bytes of a retarget table file.
+pub const RETARGET_MAGIC: [u8; 4] = *b"BSRT";
+/// Current retarget table format version.
+pub const RETARGET_VERSION: u16 = 1;
+/// Size of the retarget header in bytes.
+pub const RETARGET_HEADER_LEN: usize = 16;
+
+fn read(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|e| Error::io(path, e))
+}
+
+fn u16s(bytes: &[u8]) -> Vec<u16> {
+    bytes
+        .chunks_exact(2)
+        .map(|c| u16::from_le_bytes([c[0], c[1]]))
+        .collect()
+}
+
+fn check_permutation(ranks: &[u16], what: &str) -> std::result::Result<(), String> {
+    let mut seen = vec![false; ranks.len()];
+    for (i, &r) in ranks.iter().enumerate() {
+        let r = r as usize;
+        if r >= ranks.len() {
+            return Err(format!(
+                "{what}: rank {r} at index {i} out of range 0..{}",
+                ranks.len()
+            ));
+        }
+        if std::mem::replace(&mut seen[r], true) {
+            return Err(format!(
+                "{what}: rank {r} appears twice (not a permutation)"
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn check_side(n: usize) -> std::result::Result<(), String> {
+    if !(2..=256).contains(&n) || !n.is_power_of_two() {
+        return Err(format!("side {n} is not a power of two in 2..=256"));
+    }
+    Ok(())
+}
+
+/// A square dither mask of ranks: every value of `0..n*n` exactly once.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Mask {
+    /// Side (power of two, <= 256).
+    pub n: usize,
+    /// `n * n` ranks, row-major.
+    pub ranks: Vec<u16>,
+}
+
+impl Mask {
+    /// Validates side and permutation.
+    pub fn new(n: usize, ranks: Vec<u16>) -> Result<Mask> {
+        check_side(n).map_err(Error::Invalid)?;
+        if ranks.len() != n * n {
+            return Err(Error::Invalid(format!(
+                "mask {n}x{n} with {} ranks",
+                ranks.len()
+            )));
+        }
+        check_permutation(&ranks, "mask").map_err(Error::Invalid)?;
+        Ok(Mask { n, ranks })
+    }
+
+    /// Rank at `(x, y)`, wrapping toroidally.
+    pub fn rank(&self, x: i64, y: i64) -> u16 {
+        let n = self.n as i64;
+        self.ranks[(y.rem_euclid(n) * n + x.rem_euclid(n)) as usize]
+    }
+
+    /// Dither threshold of a rank: `(rank + 0.5) / n^2`, uniform in (0, 1).
+    pub fn threshold(&self, rank: u16) -> f32 {
+        (f32::from(rank) + 0.5) / (self.n * self.n) as f32
+    }
+
+    /// The mask as an image of `rank / (n^2 - 1)` in [0, 1].
+    pub fn to_gray(&self) -> Gray {
+        let m = (self.n * self.n - 1) as f32;
+        Gray::from_fn(self.n, self.n, |x, y| {
+            f32::from(self.ranks[y * self.n + x]) / m
+        })
+    }
+
+    /// The `.r16` bytes.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        self.ranks.iter().flat_map(|r| r.to_le_bytes()).collect()
+    }
+}
+
+/// Loads a 2D `.r16` mask (module docs), checking size and permutation.
+pub fn load_mask(path: &Path) -> Result<Mask> {
+    let bytes = read(path)?;
+    if bytes.len() % 2 != 0 {
+        return Err(Error::format(
+            path,
+            format!("odd length {} for u16 data", bytes.len()),
+        ));
+    }
+    let count = bytes.len() / 2;
+    let n = (count as f64).sqrt().round() as usize;
+    if n * n != count {
+        return Err(Error::format(
+            path,
+            format!("{count} values is not a square mask"),
+        ));
+    }
+    check_side(n).map_err(|r| Error::format(path, r))?;
+    let ranks = u16s(&bytes);
+    check_permutation(&ranks, "mask").map_err(|r| Error::format(path, r))?;
+    Ok(Mask { n, ranks })
+}
+
+/// Writes a 2D mask as `.r16`, atomically.
+pub fn save_mask(mask: &Mask, path: &Path) -> Result<()> {
+    write_atomic(path, &mask.to_bytes())
+}
+
+/// A spatio-temporal mask: `t` slices of `n x n`, each a permutation of `0..n*n`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StbnVolume {
+    /// Side of each slice.
+    pub n: usize,
+    /// Number of slices (frames).
+    pub t: usize,
+    /// `t * n * n` ranks, slice-major.
+    pub ranks: Vec<u16>,
+}
+
+impl StbnVolume {
+    /// Validates side, slice count and every slice's permutation.
+    pub fn new(n: usize, t: usize, ranks: Vec<u16>) -> Result<StbnVolume> {
+        check_volume(n, t, &ranks).map_err(Error::Invalid)?;
+        Ok(StbnVolume { n, t, ranks })
+    }
+
+    /// Slice `s` as a 2D mask.
+    pub fn slice(&self, s: usize) -> Result<Mask> {
+        let a = self.n * self.n;
+        let r = self
+            .ranks
+            .get(s * a..(s + 1) * a)
+            .ok_or_else(|| Error::Invalid(format!("slice {s} of {}", self.t)))?;
+        Mask::new(self.n, r.to_vec())
+    }
+
+    /// The `.r16` bytes.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        self.ranks.iter().flat_map(|r| r.to_le_bytes()).collect()
+    }
+}
+
+fn check_volume(n: usize, t: usize, ranks: &[u16]) -> std::result::Result<(), String> {
+    check_side(n)?;
+    let a = n * n;
+    if t == 0 || ranks.len() != a * t {
+        return Err(format!(
+            "{} values is not {t} slices of {n}x{n}",
+            ranks.len()
+        ));
+    }
+    for (s, slice) in ranks.chunks_exact(a).enumerate() {
+        check_permutation(slice, &format!("slice {s}"))?;
+    }
+    Ok(())
+}
+
+/// Loads a spatio-temporal `.r16` of side `n`; the slice count is inferred from the length.
+pub fn load_stbn(path: &Path, n: usize) -> Result<StbnVolume> {
+    let bytes = read(path)?;
+    let a = 2 * n * n;
+    if n == 0 || bytes.len() % a != 0 || bytes.is_empty() {
+        return Err(Error::format(
+            path,
+            format!(
+                "length {} is not a whole number of {n}x{n} u16 slices",
+                bytes.len()
+            ),
+        ));
+    }
+    let t = bytes.len() / a;
+    let ranks = u16s(&bytes);
+    check_volume(n, t, &ranks).map_err(|r| Error::format(path, r))?;
+    Ok(StbnVolume { n, t, ranks })
+}
+
+/// Writes a spatio-temporal mask as `.r16`, atomically.
+pub fn save_stbn(v: &StbnVolume, path: &Path) -> Result<()> {
+    write_atomic(path, &v.to_bytes())
+}
+
+/// A retargeting permutation of the mask tile (algorithm.md section 1).
+///
+/// **Semantics.** Frame `t` uses the mask `M_t(x) = M(x + o_t)`, `o_t = t * s mod n`, so a
+/// screen pixel `x` sees mask coordinate `u = x + o_t`. After sorting, the seed at `x` suits
+/// the value `M(u)`. The runtime reads `d = offsets[u]` and moves that seed to pixel `x + d`,
+/// i.e. to mask coordinate `u + d` of frame `t`'s mask. In frame `t + 1` that pixel sees
+/// `M_{t+1}(x + d) = M(u + d + s)`, and the table was optimised so that
+/// `M(u + d(u) + s) ~= M(u)`: writing `pi(u) = u + d(u)`, it minimises
+/// `sum_u |M(u) - M(pi(u) + s)|` over permutations `pi` of the torus with
+/// `|d(u)|^2 <= radius^2` (Euclidean disc). Because `pi` is a permutation,
+/// `x -> x + d(x + o_t)` is a bijection of any screen that is a multiple of `n` and wraps at
+/// its edges. The table does not depend on `t`; `o_t` only selects where it is read.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RetargetTable {
+    /// Mask side.
+    pub n: usize,
+    /// The per-frame mask shift `s` the table was optimised for.
+    pub shift: (u32, u32),
+    /// Maximum Euclidean displacement.
+    pub radius: u32,
+    /// `(dx, dy)` per mask coordinate, row-major.
+    pub offsets: Vec<(i8, i8)>,
+}
+
+impl RetargetTable {
+    /// Validates side, shift, radius, displacement bound and bijectivity.
+    pub fn new(n: usize, shift: (u32, u32), radius: u32, offsets: Vec<(i8, i8)>) -> Result<Self> {
+        let t = RetargetTable {
+            n,
+            shift,
+            radius,
+            offsets,
+        };
+        t.check().map_err(Error::Invalid)?;
+        Ok(t)
+    }
+
+    /// Destination mask coordinate index `pi(u)` of mask coordinate `(x, y)`.
+    pub fn target(&self, x: usize, y: usize) -> usize {
+        let n = self.n as i64;
+        let (dx, dy) = self.offsets[y * self.n + x];
+        let tx = (x as i64 + i64::from(dx)).rem_euclid(n);
+        let ty = (y as i64 + i64::from(dy)).rem_euclid(n);
+        (ty * n + tx) as usize
+    }
+
+    fn check(&self) -> std::result::Result<(), String> {
+        let n = self.n;
+        if !(2..=4096).contains(&n) || !n.is_power_of_two() {
+            return Err(format!("side {n} is not a power of two in 2..=4096"));
+        }
+        if self.shift.0 as usize >= n || self.shift.1 as usize >= n {
+            return Err(format!("shift {:?} not below side {n}", self.shift));
+        }
+        if self.radius > 127 {
+            return Err(format!("radius {} does not fit i8 offsets", self.radius));
+        }
+        if self.offsets.len() != n * n {
+            return Err(format!("{} offsets for a {n}x{n} tile", self.offsets.len()));
+        }
+        let r2 = i64::from(self.radius).pow(2);
+        let mut hit = vec![false; n * n];
+        for y in 0..n {
+            for x in 0..n {
+                let (dx, dy) = self.offsets[y * n + x];
+                if i64::from(dx).pow(2) + i64::from(dy).pow(2) > r2 {
+                    return Err(format!(
+                        "displacement ({dx}, {dy}) at ({x}, {y}) exceeds radius {}",
+                        self.radius
+                    ));
+                }
+                if std::mem::replace(&mut hit[self.target(x, y)], true) {
+                    return Err(format!("not a bijection: ({x}, {y}) hits a taken target"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The `.bin` bytes (header + offsets).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut b = Vec::with_capacity(RETARGET_HEADER_LEN + 2 * self.offsets.len());
+        b.extend_from_slice(&RETARGET_MAGIC);
+        for v in [
+            RETARGET_VERSION,
+            self.n as u16,
+            self.shift.0 as u16,
+            self.shift.1 as u16,
+            self.radius as u16,
+            0,
+        ] {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        for &(dx, dy) in &self.offsets {
+            b.extend_from_slice(&[dx as u8, dy as u8]);
+        }
+        b
+    }
+
+    /// Parses and validates `.bin` bytes; `path` only names the source in errors.
+    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self> {
+        if bytes.len() < RETARGET_HEADER_LEN || bytes[..4] != RETARGET_MAGIC {
+            return Err(Error::format(
+                path,
+                "not a retarget table (magic \"BSRT\" missing)",
+            ));
+        }
+        let h = u16s(&bytes[4..RETARGET_HEADER_LEN]);
+        if h[0] != RETARGET_VERSION {
+            return Err(Error::format(path, format!("unsupported version {}", h[0])));
+        }
+        let n = usize::from(h[1]);
+        let body = &bytes[RETARGET_HEADER_LEN..];
+        if body.len() != 2 * n * n {
+            return Err(Error::format(
+                path,
+                format!(
+                    "{} offset bytes for a {n}x{n} table (need {})",
+                    body.len(),
+                    2 * n * n
+                ),
+            ));
+        }
+        let offsets = body
+            .chunks_exact(2)
+            .map(|c| (c[0] as i8, c[1] as i8))
+            .collect();
+        let t = RetargetTable {
+            n,
+            shift: (u32::from(h[2]), u32::from(h[3])),
+            radius: u32::from(h[4]),
+            offsets,
+        };
+        t.check().map_err(|r| Error::format(path, r))?;
+        Ok(t)
+    }
+}
+
+/// Loads and validates a retarget table `.bin`.
+pub fn load_retarget(path: &Path) -> Result<RetargetTable> {
+    RetargetTable::from_bytes(&read(path)?, path)
+}
+
+/// Writes a retarget table `.bin`, atomically.
+pub fn save_retarget(t: &RetargetTable, path: &Path) -> Result<()> {
+    write_atomic(path, &t.to_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mask_round_trip_and_errors() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("m.r16");
+        let m = Mask::new(4, (0..16).rev().collect()).unwrap();
+        save_mask(&m, &p).unwrap();
+        assert_eq!(load_mask(&p).unwrap(), m);
+        std::fs::write(&p, [0u8; 20]).unwrap();
+        assert!(
+            load_mask(&p)
+                .unwrap_err()
+                .to_string()
+                .contains("not a square")
+        );
+        std::fs::write(&p, [0u8; 32]).unwrap();
+        assert!(load_mask(&p).unwrap_err().to_string().contains("twice"));
+        std::fs::write(&p, [0u8; 2 * 36]).unwrap();
+        assert!(
+            load_mask(&p)
+                .unwrap_err()
+                .to_string()
+                .contains("power of two")
+        );
+        let e = load_mask(&dir.path().join("missing.r16")).unwrap_err();
+        assert!(matches!(e, Error::Io { .. }), "{e}");
+    }
+
+    #[test]
+    fn stbn_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("v.r16");
+        let mut ranks: Vec<u16> = (0..16).collect();
+        ranks.extend((0..16).rev());
+        let v = StbnVolume::new(4, 2, ranks).unwrap();
+        save_stbn(&v, &p).unwrap();
+        let back = load_stbn(&p, 4).unwrap();
+        assert_eq!(back, v);
+        assert_eq!(back.slice(1).unwrap().ranks[0], 15);
+        assert!(load_stbn(&p, 8).is_err());
+    }
+
+    #[test]
+    fn retarget_round_trip_and_validation() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("t.bin");
+        // Swap (0,0) and (1,0); everything else stays.
+        let mut off = vec![(0i8, 0i8); 16];
+        off[0] = (1, 0);
+        off[1] = (-1, 0);
+        let t = RetargetTable::new(4, (3, 2), 1, off.clone()).unwrap();
+        save_retarget(&t, &p).unwrap();
+        assert_eq!(std::fs::metadata(&p).unwrap().len(), 16 + 32);
+        assert_eq!(load_retarget(&p).unwrap(), t);
+        let mut bad = off.clone();
+        bad[1] = (0, 0);
+        let e = RetargetTable::new(4, (3, 2), 1, bad).unwrap_err();
+        assert!(e.to_string().contains("bijection"), "{e}");
+        let mut far = vec![(0i8, 0i8); 16];
+        far[0] = (1, 1);
+        far[5] = (-1, -1);
+        assert!(
+            RetargetTable::new(4, (0, 0), 1, far)
+                .unwrap_err()
+                .to_string()
+                .contains("radius")
+        );
+        let mut bytes = t.to_bytes();
+        bytes[0] = b'X';
+        assert!(RetargetTable::from_bytes(&bytes, &p).is_err());
+        bytes = t.to_bytes();
+        bytes.pop();
+        assert!(RetargetTable::from_bytes(&bytes, &p).is_err());
+    }
+}

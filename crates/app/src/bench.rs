@@ -1,0 +1,63 @@
+//! `blueshift bench`: throughput of the path-tracing pass from GPU timestamps (on lavapipe,
+//! CPU time per pass), as Msamples/s; plus primary-ray Mrays/s with `--bounces 0`.
+use crate::GpuOpts;
+use crate::render::{SceneArgs, config, load_assets, load_scene};
+use anyhow::{Result, bail};
+use blueshift_render::Renderer;
+
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Timed frames (after one warm-up frame).
+    #[arg(long, default_value_t = 3)]
+    pub frames: u32,
+    #[arg(long, default_value = "white")]
+    pub method: String,
+}
+
+pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
+    if !(1..=1000).contains(&a.frames) {
+        bail!("--frames {} is outside 1..=1000", a.frames);
+    }
+    let cfg = config(&a.scene, &a.method)?;
+    let scene = load_scene(&a.scene.scene)?;
+    let assets = load_assets(&a.scene)?;
+    let dev = gpu.device()?;
+    let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
+    r.render_frame()?; // warm-up: lavapipe compiles the pipeline lazily
+    let mut ms: Vec<f64> = Vec::new();
+    let mut per_pass = std::collections::BTreeMap::<String, Vec<f64>>::new();
+    for _ in 0..a.frames {
+        let s = r.render_frame()?;
+        ms.push(s.ms("trace"));
+        for p in s.passes {
+            per_pass.entry(p.name).or_default().push(p.ms);
+        }
+    }
+    ms.sort_by(f64::total_cmp);
+    let median = ms[ms.len() / 2];
+    let samples = cfg.width as f64 * cfg.height as f64 * cfg.spp as f64;
+    println!(
+        "scene {} {}x{} spp {} bounces {} method {} on {}",
+        a.scene.scene,
+        cfg.width,
+        cfg.height,
+        cfg.spp,
+        cfg.bounces,
+        cfg.method,
+        dev.info().name
+    );
+    for (name, mut v) in per_pass {
+        v.sort_by(f64::total_cmp);
+        println!("  pass {name:<10} median {:9.3} ms", v[v.len() / 2]);
+    }
+    println!(
+        "trace median {median:.1} ms: {:.3} Msamples/s",
+        samples / median / 1e3
+    );
+    if cfg.bounces == 0 {
+        println!("primary rays: {:.3} Mrays/s", samples / median / 1e3);
+    }
+    Ok(())
+}

@@ -1,0 +1,290 @@
+//! `blueshift eval`: renders a camera path with several methods, renders references, and
+//! writes a report (report.md, report.json, PNG figures) with the metrics of evaluation.md.
+mod figures;
+mod metrics;
+mod reference;
+mod report;
+
+use crate::GpuOpts;
+use crate::output::prepare_dir;
+use crate::render::{load_assets, scene_path};
+use anyhow::{Context, Result, bail};
+use blueshift_analysis::Gray;
+use blueshift_render::{CameraPath, Method, RenderConfig, Renderer};
+use indicatif::{ProgressBar, ProgressStyle};
+use metrics::{Masks, RunAccumulator, RunMetrics};
+use reference::{RefJob, references};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(clap::Args, Debug)]
+pub struct EvalArgs {
+    /// glTF/GLB file or bundled preset (cornell-box, textured, edges).
+    #[arg(long, default_value = "cornell-box")]
+    pub scene: String,
+    /// Comma-separated methods; `white` is always added (ratios are against it).
+    #[arg(long, default_value = "white,sobol,mask-r2,stbn,sort,sort-retarget")]
+    pub methods: String,
+    /// Comma-separated samples per pixel per frame.
+    #[arg(long, default_value = "1")]
+    pub spp: String,
+    /// Comma-separated camera paths: static, pan:PX, orbit:DEG, or keyframe files.
+    #[arg(long, default_value = "static,pan:1")]
+    pub camera: String,
+    /// Comma-separated bounce counts (1 = direct light only).
+    #[arg(long, default_value = "1,8")]
+    pub bounces: String,
+    #[arg(long, default_value_t = 32)]
+    pub frames: u32,
+    #[arg(long, default_value_t = 128)]
+    pub width: u32,
+    #[arg(long, default_value_t = 128)]
+    pub height: u32,
+    #[arg(long, default_value_t = 4)]
+    pub block: u32,
+    /// Reference samples per pixel (>= 1024).
+    #[arg(long, default_value_t = 1024)]
+    pub reference_spp: u32,
+    /// Independent sequences (initial seed maps) per configuration; metrics are averaged.
+    #[arg(long, default_value_t = 1)]
+    pub sequences: u32,
+    /// Reference cache (default: ~/.cache/blueshift/references).
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
+    #[arg(long)]
+    pub assets: Option<PathBuf>,
+    #[arg(long, default_value = "out/eval")]
+    pub out: PathBuf,
+}
+
+fn list<T>(s: &str, what: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>> {
+    let v: Vec<T> = s
+        .split(',')
+        .map(str::trim)
+        .filter(|x| !x.is_empty())
+        .map(|x| parse(x).map_err(|e| anyhow::anyhow!("--{what}: {e}")))
+        .collect::<Result<_>>()?;
+    if v.is_empty() {
+        bail!("--{what} is empty");
+    }
+    Ok(v)
+}
+
+fn number(range: std::ops::RangeInclusive<u32>) -> impl Fn(&str) -> Result<u32, String> {
+    move |s| {
+        s.parse::<u32>()
+            .ok()
+            .filter(|v| range.contains(v))
+            .ok_or_else(|| {
+                format!(
+                    "'{s}' is not a number in {}..={}",
+                    range.start(),
+                    range.end()
+                )
+            })
+    }
+}
+
+/// One configuration: everything but the method.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Config {
+    pub camera: CameraPath,
+    pub bounces: u32,
+    pub spp: u32,
+}
+
+impl Config {
+    pub fn label(&self) -> String {
+        format!("{} b{} spp{}", self.camera.label(), self.bounces, self.spp)
+    }
+    pub fn slug(&self) -> String {
+        format!(
+            "{}_b{}_spp{}",
+            self.camera.label().replace([':', '.', '/'], "-"),
+            self.bounces,
+            self.spp
+        )
+    }
+}
+
+/// One run's results.
+pub struct Run {
+    pub config: Config,
+    pub method: Method,
+    pub metrics: RunMetrics,
+    pub flip: f64,
+    pub pass_ms: BTreeMap<String, f64>,
+    pub seconds: f64,
+    pub last_frame: Vec<[f32; 4]>,
+    pub last_error: Option<Gray>,
+}
+
+pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
+    let start = Instant::now();
+    let mut methods = list(&args.methods, "methods", |s| s.parse::<Method>())?;
+    if !methods.contains(&Method::White) {
+        methods.insert(0, Method::White);
+    }
+    let spps = list(&args.spp, "spp", number(1..=4096))?;
+    let cameras = list(&args.camera, "camera", CameraPath::parse)?;
+    let bounces = list(&args.bounces, "bounces", number(0..=64))?;
+    if !(2..=100_000).contains(&args.frames) {
+        bail!("--frames {} is outside 2..=100000", args.frames);
+    }
+    if !(1..=64).contains(&args.sequences) {
+        bail!("--sequences {} is outside 1..=64", args.sequences);
+    }
+    let path = scene_path(&args.scene);
+    let scene_bytes =
+        std::fs::read(&path).with_context(|| format!("reading scene {}", path.display()))?;
+    let scene = crate::render::load_scene(&args.scene)?;
+    let assets = load_assets(&crate::render::SceneArgs {
+        scene: args.scene.clone(),
+        width: args.width,
+        height: args.height,
+        spp: 1,
+        bounces: 1,
+        block: args.block,
+        sampler: None,
+        assets: args.assets.clone(),
+    })?;
+    prepare_dir(&args.out)?;
+    let cache = args.cache.clone().unwrap_or_else(|| {
+        std::env::var_os("HOME")
+            .map_or(PathBuf::from(".cache"), PathBuf::from)
+            .join(".cache/blueshift/references")
+    });
+    let dev = gpu.device()?;
+    RenderConfig {
+        block: args.block,
+        ..RenderConfig::new(args.width, args.height)
+    }
+    .validate(&dev)?;
+
+    let mut runs = Vec::new();
+    let mut configs = Vec::new();
+    for camera in &cameras {
+        for &b in &bounces {
+            let job = RefJob {
+                dev: &dev,
+                scene: &scene,
+                scene_bytes: &scene_bytes,
+                assets: &assets,
+                width: args.width,
+                height: args.height,
+                bounces: b,
+                spp: args.reference_spp,
+                frames: args.frames,
+                path: camera,
+                cache: &cache,
+            };
+            let refs = references(&job)?;
+            for &spp in &spps {
+                let config = Config {
+                    camera: camera.clone(),
+                    bounces: b,
+                    spp,
+                };
+                let bar =
+                    ProgressBar::new((methods.len() as u32 * args.frames * args.sequences) as u64);
+                bar.set_style(
+                    ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} frames eta {eta}")
+                        .unwrap_or_else(|_| ProgressStyle::default_bar()),
+                );
+                bar.set_message(config.label());
+                for &m in &methods {
+                    runs.push(run_method(
+                        &dev, &scene, &assets, args, &config, m, &refs, &bar,
+                    )?);
+                }
+                bar.finish_and_clear();
+                configs.push(config);
+            }
+        }
+    }
+    crate::check_validation(&dev)?;
+    let elapsed = start.elapsed().as_secs_f64();
+    report::write(&args.out, args, &dev, &configs, &runs, elapsed)?;
+    println!(
+        "wrote {} ({} runs, {:.0} s)",
+        args.out.join("report.md").display(),
+        runs.len(),
+        elapsed
+    );
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_method(
+    dev: &blueshift_device::Device,
+    scene: &blueshift_scene::Scene,
+    assets: &blueshift_render::MethodAssets,
+    args: &EvalArgs,
+    config: &Config,
+    method: Method,
+    refs: &reference::References,
+    bar: &ProgressBar,
+) -> Result<Run> {
+    let t0 = Instant::now();
+    let (w, h) = (args.width, args.height);
+    let window = (args.frames / 2) as usize;
+    let mut merged: Option<RunMetrics> = None;
+    let mut times: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let (mut last_frame, mut last_error, mut flip) = (Vec::new(), None, 0.0);
+    for seq in 0..args.sequences {
+        let cfg = RenderConfig {
+            spp: config.spp,
+            bounces: config.bounces,
+            block: args.block,
+            method,
+            sequence: seq,
+            ..RenderConfig::new(w, h)
+        };
+        let mut r = Renderer::new(dev, scene, assets, cfg)?;
+        let base = scene.camera_or_default();
+        let mut acc = RunAccumulator::new(window)?;
+        for t in 0..args.frames {
+            r.set_camera(config.camera.camera(&base, t));
+            r.set_view_offset(config.camera.view_offset(t));
+            let stats = r.render_frame()?;
+            for p in stats.passes {
+                times.entry(p.name).or_default().push(p.ms);
+            }
+            let est = r.read_estimate()?;
+            let rf = refs.frame(t, w, h);
+            let e: Vec<f32> = est.iter().zip(&rf.px).map(|(a, b)| a[3] - b[3]).collect();
+            let reference_y = Gray::new(w as usize, h as usize, rf.luminance())?;
+            let masks = Masks::from_reference(&reference_y);
+            acc.add_frame(t as usize, Gray::new(w as usize, h as usize, e)?, &masks)?;
+            if t + 1 == args.frames {
+                last_frame = est;
+                flip += figures::flip_mean(&r.read_accum()?, &rf.px, w, h) / args.sequences as f64;
+            }
+            bar.inc(1);
+        }
+        last_error = acc.last_error.clone();
+        let m = acc.finish()?;
+        merged = Some(match merged {
+            None => m,
+            Some(prev) => metrics::average(prev, m, seq as f64),
+        });
+    }
+    let pass_ms = times
+        .into_iter()
+        .map(|(k, mut v)| {
+            v.sort_by(f64::total_cmp);
+            (k, v[v.len() / 2])
+        })
+        .collect();
+    Ok(Run {
+        config: config.clone(),
+        method,
+        metrics: merged.context("no sequence ran")?,
+        flip,
+        pass_ms,
+        seconds: t0.elapsed().as_secs_f64(),
+        last_frame,
+        last_error,
+    })
+}

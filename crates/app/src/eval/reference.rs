@@ -1,0 +1,208 @@
+//! Reference images: Owen-scrambled Sobol at >= 1024 spp, cached on disk under a key of scene,
+//! camera path, resolution, bounces, spp and the path tracer's SPIR-V (the renderer version).
+use crate::output::write_atomic;
+use anyhow::{Context, Result, bail};
+use blueshift_device::Device;
+use blueshift_render::{CameraPath, Method, MethodAssets, RenderConfig, Renderer};
+use blueshift_sampling::Sampler;
+use blueshift_scene::Scene;
+use indicatif::{ProgressBar, ProgressStyle};
+use sha2::{Digest, Sha256};
+use std::path::{Path, PathBuf};
+
+/// Samples per pixel per reference frame; references accumulate `spp / REF_CHUNK` frames.
+const REF_CHUNK: u32 = 64;
+const MAGIC: &[u8; 8] = b"BSREF01\0";
+
+/// Linear RGB + luminance per pixel.
+#[derive(Debug, Clone)]
+pub struct Image {
+    pub w: u32,
+    pub h: u32,
+    pub px: Vec<[f32; 4]>,
+}
+
+impl Image {
+    /// The `w x h` window at column `x0` (pans crop one wide reference).
+    pub fn crop(&self, x0: u32, w: u32, h: u32) -> Image {
+        let px = (0..h)
+            .flat_map(|y| (x0..x0 + w).map(move |x| (x, y)))
+            .map(|(x, y)| self.px[(y * self.w + x) as usize])
+            .collect();
+        Image { w, h, px }
+    }
+    pub fn luminance(&self) -> Vec<f32> {
+        self.px.iter().map(|p| p[3]).collect()
+    }
+}
+
+/// References for every frame of a camera path.
+pub enum References {
+    /// One image for all frames (static camera).
+    Single(Image),
+    /// A wide image; frame t is the window at column `step * t` (integer pans).
+    Pan { wide: Image, step: u32 },
+    /// One image per frame.
+    PerFrame(Vec<Image>),
+}
+
+impl References {
+    pub fn frame(&self, t: u32, w: u32, h: u32) -> Image {
+        match self {
+            References::Single(i) => i.clone(),
+            References::Pan { wide, step } => wide.crop(step * t, w, h),
+            References::PerFrame(v) => v[t as usize].clone(),
+        }
+    }
+}
+
+/// What a reference depends on.
+pub struct RefJob<'a> {
+    pub dev: &'a Device,
+    pub scene: &'a Scene,
+    pub scene_bytes: &'a [u8],
+    pub assets: &'a MethodAssets,
+    pub width: u32,
+    pub height: u32,
+    pub bounces: u32,
+    pub spp: u32,
+    pub frames: u32,
+    pub path: &'a CameraPath,
+    pub cache: &'a Path,
+}
+
+fn key(job: &RefJob, what: &str) -> String {
+    let mut h = Sha256::new();
+    h.update(job.scene_bytes);
+    h.update(
+        blueshift_shaders::spirv("trace/trace")
+            .map(|w| bytemuck::cast_slice::<u32, u8>(&w).to_vec())
+            .unwrap_or_default(),
+    );
+    h.update(format!(
+        "{what}|{}x{}|b{}|spp{}|v{}",
+        job.width,
+        job.height,
+        job.bounces,
+        job.spp,
+        env!("CARGO_PKG_VERSION")
+    ));
+    h.finalize()
+        .iter()
+        .take(12)
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+fn load(path: &Path) -> Option<Image> {
+    let bytes = std::fs::read(path).ok()?;
+    if bytes.len() < 16 || &bytes[..8] != MAGIC {
+        return None;
+    }
+    let w = u32::from_le_bytes(bytes[8..12].try_into().ok()?);
+    let h = u32::from_le_bytes(bytes[12..16].try_into().ok()?);
+    let body = &bytes[16..];
+    if body.len() != (w * h) as usize * 16 {
+        return None;
+    }
+    Some(Image {
+        w,
+        h,
+        px: bytemuck::pod_collect_to_vec(body),
+    })
+}
+
+fn save(path: &Path, img: &Image) -> Result<()> {
+    let mut bytes = MAGIC.to_vec();
+    bytes.extend(img.w.to_le_bytes());
+    bytes.extend(img.h.to_le_bytes());
+    bytes.extend(bytemuck::cast_slice::<[f32; 4], u8>(&img.px));
+    write_atomic(path, &bytes)
+}
+
+/// Renders (or loads from cache) one reference image.
+fn render_one(
+    job: &RefJob,
+    what: &str,
+    w: u32,
+    frame: u32,
+    view: (u32, u32),
+    bar: &ProgressBar,
+) -> Result<Image> {
+    let file: PathBuf = job.cache.join(format!(
+        "{}.ref",
+        key(job, &format!("{what}|w{w}|f{frame}"))
+    ));
+    if let Some(img) = load(&file) {
+        bar.inc(job.spp as u64);
+        return Ok(img);
+    }
+    let cfg = RenderConfig {
+        spp: REF_CHUNK.min(job.spp),
+        bounces: job.bounces,
+        method: Method::Sobol,
+        sampler: Some(Sampler::Sobol),
+        view_size: Some(view),
+        ..RenderConfig::new(w, job.height)
+    };
+    let mut r = Renderer::new(job.dev, job.scene, job.assets, cfg.clone())?;
+    r.set_camera(job.path.camera(&job.scene.camera_or_default(), frame));
+    r.set_view_offset(job.path.view_offset(frame));
+    for _ in 0..job.spp.div_ceil(cfg.spp) {
+        r.render_frame()?;
+        bar.inc(cfg.spp as u64);
+    }
+    let acc = r.read_accum()?;
+    let img = Image {
+        w,
+        h: job.height,
+        px: acc,
+    };
+    std::fs::create_dir_all(job.cache)
+        .with_context(|| format!("creating cache {}", job.cache.display()))?;
+    save(&file, &img)?;
+    Ok(img)
+}
+
+/// All references of a camera path.
+pub fn references(job: &RefJob) -> Result<References> {
+    if job.spp < 1024 {
+        bail!("--reference-spp {} is below 1024 (evaluation.md)", job.spp);
+    }
+    let per_frame = |n: u32| n as u64 * job.spp as u64;
+    let label = job.path.label();
+    let view = (job.width, job.height);
+    let make_bar = |total: u64| {
+        let bar = ProgressBar::new(total);
+        bar.set_style(
+            ProgressStyle::with_template("reference {msg} {bar:30} {percent}% eta {eta}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar.set_message(format!("{label} b{}", job.bounces));
+        bar
+    };
+    Ok(match job.path {
+        CameraPath::Static => {
+            let bar = make_bar(per_frame(1));
+            let r = References::Single(render_one(job, &label, job.width, 0, view, &bar)?);
+            bar.finish_and_clear();
+            r
+        }
+        CameraPath::Pan { px_per_frame } if px_per_frame.fract() == 0.0 && *px_per_frame >= 0.0 => {
+            let step = *px_per_frame as u32;
+            let wide_w = job.width + step * job.frames.saturating_sub(1);
+            let bar = make_bar(per_frame(1));
+            let wide = render_one(job, &label, wide_w, 0, view, &bar)?;
+            bar.finish_and_clear();
+            References::Pan { wide, step }
+        }
+        _ => {
+            let bar = make_bar(per_frame(job.frames));
+            let v = (0..job.frames)
+                .map(|f| render_one(job, &label, job.width, f, view, &bar))
+                .collect::<Result<Vec<_>>>()?;
+            bar.finish_and_clear();
+            References::PerFrame(v)
+        }
+    })
+}

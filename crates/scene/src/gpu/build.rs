@@ -1,0 +1,391 @@
+//! [`SceneGpu`]: the scene flattened into upload-ready buffers.
+
+use super::*;
+use crate::geometry::{luminance, srgb_to_linear};
+use crate::scene::{Scene, Wrap, check_sizes};
+use crate::{Aabb, Bvh, Result, intersect};
+use rayon::prelude::*;
+
+/// Everything the GPU needs, ready to upload. Triangle-indexed arrays are in BVH order.
+#[derive(Clone, Debug, Default)]
+pub struct SceneGpu {
+    pub nodes: Vec<BvhNode>,
+    pub triangles: Vec<GpuTriangle>,
+    pub shading: Vec<TriangleShading>,
+    pub materials: Vec<GpuMaterial>,
+    pub textures: Vec<GpuTexture>,
+    /// All texture images, RGBA8 packed into one `u32` per texel.
+    pub texels: Vec<u32>,
+    pub lights: Vec<GpuLight>,
+    pub info: SceneInfo,
+    /// `bvh_order[i]` is the index in [`Scene::triangles`] of GPU triangle `i`.
+    pub bvh_order: Vec<u32>,
+    /// Depth of the deepest BVH leaf.
+    pub bvh_depth: u32,
+}
+
+/// One buffer to upload.
+#[derive(Clone, Copy, Debug)]
+pub struct GpuBuffer<'a> {
+    /// Human-readable name, used in errors ("BVH node").
+    pub name: &'static str,
+    /// The GLSL array name the shaders use (`bvh_nodes`).
+    pub glsl_name: &'static str,
+    /// The contents. Never empty: an empty array is padded with one zeroed element (an empty
+    /// box for BVH nodes), so it can always back a Vulkan buffer; use `info` for the counts.
+    pub bytes: &'a [u8],
+}
+
+impl SceneGpu {
+    /// Builds the BVH (in parallel) and flattens the scene.
+    pub fn build(scene: &Scene) -> SceneGpu {
+        let positions: Vec<[Vec3; 3]> = scene.triangles.iter().map(|t| t.positions).collect();
+        let bvh = Bvh::build(&positions);
+        drop(positions);
+
+        let triangles: Vec<GpuTriangle> = bvh
+            .order
+            .par_iter()
+            .map(|&i| {
+                let p = scene.triangles[i as usize].positions;
+                GpuTriangle {
+                    v0: p[0],
+                    e1: p[1] - p[0],
+                    e2: p[2] - p[0],
+                }
+            })
+            .collect();
+
+        // Texture atlas: images in order, one u32 per texel.
+        let mut texels = Vec::new();
+        let mut image_offsets = Vec::with_capacity(scene.images.len());
+        let mut image_means = Vec::with_capacity(scene.images.len());
+        for img in &scene.images {
+            image_offsets.push(texels.len() as u32);
+            texels.extend(
+                img.rgba8
+                    .chunks_exact(4)
+                    .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])),
+            );
+            image_means.push(mean_linear_rgb(&img.rgba8));
+        }
+        let wrap_bits = |w: Wrap| match w {
+            Wrap::Repeat => TEXTURE_WRAP_REPEAT,
+            Wrap::Clamp => TEXTURE_WRAP_CLAMP,
+            Wrap::Mirror => TEXTURE_WRAP_MIRROR,
+        };
+        let textures: Vec<GpuTexture> = scene
+            .textures
+            .iter()
+            .map(|t| {
+                // A dangling image index (hand-built scenes only) becomes a 0x0 texture.
+                let i = t.image as usize;
+                let (w, h) = scene
+                    .images
+                    .get(i)
+                    .map_or((0, 0), |img| (img.width, img.height));
+                GpuTexture {
+                    offset: image_offsets.get(i).copied().unwrap_or(0),
+                    width: w,
+                    height: h,
+                    flags: wrap_bits(t.wrap_s) << TEXTURE_WRAP_S_SHIFT
+                        | wrap_bits(t.wrap_t) << TEXTURE_WRAP_T_SHIFT
+                        | if t.nearest { TEXTURE_FILTER_NEAREST } else { 0 },
+                }
+            })
+            .collect();
+        let tex_index = |t: Option<u32>| t.map_or(-1, |t| t as i32);
+        let materials: Vec<GpuMaterial> = scene
+            .materials
+            .iter()
+            .map(|m| GpuMaterial {
+                base_color: m.base_color,
+                emissive: m.emissive,
+                metallic: m.metallic,
+                roughness: m.roughness,
+                base_color_tex: tex_index(m.base_color_texture),
+                emissive_tex: tex_index(m.emissive_texture),
+                mr_tex: tex_index(m.metallic_roughness_texture),
+                flags: if m.double_sided {
+                    MATERIAL_DOUBLE_SIDED
+                } else {
+                    0
+                },
+            })
+            .collect();
+
+        // Emitted radiance per material (texture approximated by its mean).
+        let material_emission: Vec<Vec3> = scene
+            .materials
+            .iter()
+            .map(|m| {
+                let tex = m
+                    .emissive_texture
+                    .map(|t| {
+                        let image = scene.textures.get(t as usize).map(|t| t.image as usize);
+                        image
+                            .and_then(|i| image_means.get(i))
+                            .copied()
+                            .unwrap_or(Vec3::ZERO)
+                    })
+                    .unwrap_or(Vec3::ONE);
+                m.emissive * tex
+            })
+            .collect();
+
+        let mut shading = Vec::with_capacity(triangles.len());
+        let mut lights = Vec::new();
+        let mut total = 0f64;
+        let mut powers = Vec::new();
+        for (i, &src) in bvh.order.iter().enumerate() {
+            let t = &scene.triangles[src as usize];
+            let mut light = -1;
+            let emission = material_emission
+                .get(t.material as usize)
+                .copied()
+                .unwrap_or(Vec3::ZERO);
+            let area = 0.5
+                * (t.positions[1] - t.positions[0])
+                    .cross(t.positions[2] - t.positions[0])
+                    .length();
+            let power = luminance(emission) as f64 * area as f64 * std::f64::consts::PI;
+            if power > 0.0 && power.is_finite() {
+                light = lights.len() as i32;
+                total += power;
+                powers.push(power);
+                lights.push(GpuLight {
+                    triangle: i as u32,
+                    area,
+                    pdf: 0.0,
+                    cdf: 0.0,
+                });
+            }
+            shading.push(TriangleShading {
+                n0: t.normals[0],
+                n1: t.normals[1],
+                n2: t.normals[2],
+                uv0: t.uvs[0],
+                uv1: t.uvs[1],
+                uv2: t.uvs[2],
+                material: t.material,
+                light,
+            });
+        }
+        let mut running = 0f64;
+        let last = lights.len().saturating_sub(1);
+        for (k, (l, p)) in lights.iter_mut().zip(&powers).enumerate() {
+            running += p;
+            l.pdf = (p / total) as f32;
+            l.cdf = if k == last {
+                1.0
+            } else {
+                (running / total) as f32
+            };
+        }
+
+        let bounds = scene.bounds();
+        let info = SceneInfo {
+            triangle_count: triangles.len() as u32,
+            node_count: bvh.nodes.len() as u32,
+            material_count: materials.len() as u32,
+            texture_count: textures.len() as u32,
+            light_count: lights.len() as u32,
+            texel_count: texels.len() as u32,
+            total_light_power: total as f32,
+            environment: scene.environment,
+            bounds_min: if bounds.is_empty() {
+                Vec3::ZERO
+            } else {
+                bounds.min
+            },
+            bounds_max: if bounds.is_empty() {
+                Vec3::ZERO
+            } else {
+                bounds.max
+            },
+        };
+        SceneGpu {
+            nodes: bvh.nodes,
+            triangles,
+            shading,
+            materials,
+            textures,
+            texels,
+            lights,
+            info,
+            bvh_order: bvh.order,
+            bvh_depth: bvh.depth,
+        }
+    }
+
+    /// The BVH as a [`Bvh`] view (nodes and order), e.g. for [`Bvh::validate`].
+    pub fn bvh(&self) -> Bvh {
+        Bvh {
+            nodes: self.nodes.clone(),
+            order: self.bvh_order.clone(),
+            depth: self.bvh_depth,
+        }
+    }
+
+    /// Bounds of GPU triangle `i`.
+    pub fn triangle_bounds(&self, i: usize) -> Aabb {
+        let t = &self.triangles[i];
+        Aabb::from_points(&[t.v0, t.v0 + t.e1, t.v0 + t.e2])
+    }
+
+    /// The buffers to upload, in a fixed order (nodes, triangles, shading, materials,
+    /// textures, texels, lights).
+    pub fn buffers(&self) -> [GpuBuffer<'_>; 7] {
+        fn bytes<'a, T: bytemuck::Pod>(v: &'a [T], pad: &'a T) -> &'a [u8] {
+            if v.is_empty() {
+                bytemuck::bytes_of(pad)
+            } else {
+                bytemuck::cast_slice(v)
+            }
+        }
+        const EMPTY_NODE: BvhNode = BvhNode::EMPTY;
+        const ZERO_TRI: GpuTriangle = GpuTriangle {
+            v0: Vec3::ZERO,
+            e1: Vec3::ZERO,
+            e2: Vec3::ZERO,
+        };
+        let z_shading: &'static TriangleShading = &ZERO_SHADING;
+        let z_mat: &'static GpuMaterial = &ZERO_MATERIAL;
+        let z_tex: &'static GpuTexture = &ZERO_TEXTURE;
+        let z_light: &'static GpuLight = &ZERO_LIGHT;
+        [
+            GpuBuffer {
+                name: "BVH node",
+                glsl_name: "bvh_nodes",
+                bytes: bytes(&self.nodes, &EMPTY_NODE),
+            },
+            GpuBuffer {
+                name: "BVH triangle",
+                glsl_name: "bvh_triangles",
+                bytes: bytes(&self.triangles, &ZERO_TRI),
+            },
+            GpuBuffer {
+                name: "triangle shading",
+                glsl_name: "triangle_shading",
+                bytes: bytes(&self.shading, z_shading),
+            },
+            GpuBuffer {
+                name: "material",
+                glsl_name: "materials",
+                bytes: bytes(&self.materials, z_mat),
+            },
+            GpuBuffer {
+                name: "texture table",
+                glsl_name: "textures",
+                bytes: bytes(&self.textures, z_tex),
+            },
+            GpuBuffer {
+                name: "texel",
+                glsl_name: "texels",
+                bytes: bytes(&self.texels, &0u32),
+            },
+            GpuBuffer {
+                name: "light",
+                glsl_name: "lights",
+                bytes: bytes(&self.lights, z_light),
+            },
+        ]
+    }
+
+    /// Total bytes of all buffers.
+    pub fn byte_size(&self) -> u64 {
+        self.buffers().iter().map(|b| b.bytes.len() as u64).sum()
+    }
+
+    /// Errors with the first buffer larger than `maxStorageBufferRange`.
+    pub fn check_limits(&self, max_storage_buffer_range: u64) -> Result<()> {
+        let sizes: Vec<(&'static str, u64)> = self
+            .buffers()
+            .iter()
+            .map(|b| (b.name, b.bytes.len() as u64))
+            .collect();
+        check_sizes(&sizes, max_storage_buffer_range)
+    }
+
+    /// Closest hit (CPU twin of `bvh_closest_hit`).
+    pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
+        intersect::closest_hit(&self.nodes, &self.triangles, ray)
+    }
+
+    /// Any hit in `[ray.tmin, ray.tmax]` (CPU twin of `bvh_occluded`).
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        intersect::occluded(&self.nodes, &self.triangles, ray)
+    }
+
+    /// Reference intersector: every triangle, no BVH.
+    pub fn closest_hit_brute_force(&self, ray: &Ray) -> Option<Hit> {
+        intersect::closest_hit_brute_force(&self.triangles, ray)
+    }
+
+    /// Closest hits of many rays, in parallel.
+    pub fn trace_rays(&self, rays: &[Ray]) -> Vec<Option<Hit>> {
+        rays.par_iter().map(|r| self.closest_hit(r)).collect()
+    }
+
+    /// Closest hits in the exact encoding `bvh_trace.comp` writes (misses as [`Hit::miss`]),
+    /// for a direct comparison with the GPU output buffer.
+    pub fn trace_rays_raw(&self, rays: &[Ray]) -> Vec<Hit> {
+        rays.par_iter()
+            .map(|r| self.closest_hit(r).unwrap_or_else(|| Hit::miss(r)))
+            .collect()
+    }
+
+    /// Occlusion of many rays, as `bvh_trace.comp` writes it (1 = occluded).
+    pub fn occluded_rays(&self, rays: &[Ray]) -> Vec<u32> {
+        rays.par_iter().map(|r| self.occluded(r) as u32).collect()
+    }
+}
+
+const ZERO_SHADING: TriangleShading = TriangleShading {
+    n0: Vec3::ZERO,
+    n1: Vec3::ZERO,
+    n2: Vec3::ZERO,
+    uv0: Vec2::ZERO,
+    uv1: Vec2::ZERO,
+    uv2: Vec2::ZERO,
+    material: 0,
+    light: -1,
+};
+const ZERO_MATERIAL: GpuMaterial = GpuMaterial {
+    base_color: [0.0; 4],
+    emissive: Vec3::ZERO,
+    metallic: 0.0,
+    roughness: 0.0,
+    base_color_tex: -1,
+    emissive_tex: -1,
+    mr_tex: -1,
+    flags: 0,
+};
+const ZERO_TEXTURE: GpuTexture = GpuTexture {
+    offset: 0,
+    width: 0,
+    height: 0,
+    flags: 0,
+};
+const ZERO_LIGHT: GpuLight = GpuLight {
+    triangle: 0,
+    area: 0.0,
+    pdf: 0.0,
+    cdf: 0.0,
+};
+
+/// Mean linear RGB of an sRGB RGBA8 image.
+fn mean_linear_rgb(rgba: &[u8]) -> Vec3 {
+    let lut: Vec<f32> = (0..=255u8).map(srgb_to_linear).collect();
+    let n = rgba.len() / 4;
+    if n == 0 {
+        return Vec3::ZERO;
+    }
+    let mut sum = [0f64; 3];
+    for c in rgba.chunks_exact(4) {
+        for k in 0..3 {
+            sum[k] += lut[c[k] as usize] as f64;
+        }
+    }
+    Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32) / n as f32
+}

@@ -1,0 +1,51 @@
+//! Scenes for Blueshift: glTF 2.0 loading, a binned-SAH BVH, and the flattened GPU layout the
+//! path-tracing compute shader reads. Pure CPU; nothing here needs a Vulkan device.
+//!
+//! Pipeline: [`Scene::load`] (glTF/GLB -> world-space triangles, materials, textures, camera)
+//! -> [`SceneGpu::build`] (BVH build, triangles reordered into BVH leaf order, light CDF,
+//! texture atlas) -> upload [`SceneGpu::buffers`]. The CPU intersector on [`SceneGpu`]
+//! ([`SceneGpu::closest_hit`], [`SceneGpu::occluded`], [`SceneGpu::trace_rays`]) is the twin
+//! of `shaders/include/bvh.glsl`: same traversal, same Möller–Trumbore operation order.
+//!
+//! ```no_run
+//! # fn main() -> Result<(), blueshift_scene::SceneError> {
+//! use blueshift_scene::{Scene, SceneGpu, Ray};
+//! let scene = Scene::load("assets/scenes/cornell-box.gltf")?;
+//! scene.check_limits(128 << 20)?;
+//! let gpu = SceneGpu::build(&scene);
+//! let camera = scene.camera_or_default();
+//! let ray = camera.basis(1.0).primary_ray(128, 128, 256, 256);
+//! let hit = gpu.closest_hit(&ray);
+//! # let _ = (hit, Ray::default()); Ok(()) }
+//! ```
+
+pub mod bvh;
+mod camera;
+mod error;
+mod geometry;
+pub mod gpu;
+mod intersect;
+mod load;
+pub mod presets;
+mod scene;
+
+pub use bvh::Bvh;
+pub use camera::{Camera, CameraBasis};
+pub use error::SceneError;
+pub use geometry::Aabb;
+pub use gpu::{
+    BvhNode, GpuBuffer, GpuLight, GpuMaterial, GpuTexture, GpuTriangle, Hit, Ray, SceneGpu,
+    SceneInfo, TriangleShading,
+};
+pub use intersect::{closest_hit, closest_hit_brute_force, intersect_triangle, occluded};
+pub use load::LoadOptions;
+pub use scene::{Image, Material, Scene, Texture, Triangle, Wrap};
+
+/// Result alias for this crate.
+pub type Result<T, E = SceneError> = std::result::Result<T, E>;
+
+/// The generated GLSL header with every shared scene struct and constant, meant for
+/// `shaders/include/generated/scene.glsl`.
+pub fn glsl_header() -> String {
+    gpu::header().render("scene")
+}

@@ -1,0 +1,192 @@
+//! Materials, textures and images.
+
+use super::Ctx;
+use crate::scene::{Image, Material, Texture, Wrap};
+use glam::Vec3;
+use gltf::image::Format;
+use gltf::texture::{MagFilter, WrappingMode};
+use std::path::Path;
+
+/// Decodes every image to RGBA8. Returns the decoded images and, per glTF image index, its
+/// index among them (`None` when it could not be decoded: a warning, and textures using it are
+/// dropped from their materials).
+pub(super) fn load_images(
+    document: &gltf::Document,
+    base: &Path,
+    ctx: &mut Ctx,
+) -> (Vec<Image>, Vec<Option<u32>>) {
+    let mut images = Vec::new();
+    let mut map = Vec::new();
+    for image in document.images() {
+        match decode(&image, base, ctx) {
+            Ok(img) => {
+                map.push(Some(images.len() as u32));
+                images.push(img);
+            }
+            Err(problem) => {
+                let i = image.index();
+                ctx.warnings.warn(&format!("image:{i}"), || {
+                    format!("image {i} cannot be used ({problem}); textures using it are ignored")
+                });
+                map.push(None);
+            }
+        }
+    }
+    (images, map)
+}
+
+fn decode(image: &gltf::Image, base: &Path, ctx: &Ctx) -> Result<Image, String> {
+    if let gltf::image::Source::View { view, .. } = image.source() {
+        let len = ctx
+            .buffers
+            .get(view.buffer().index())
+            .map_or(0, |d| d.len());
+        if view
+            .offset()
+            .checked_add(view.length())
+            .is_none_or(|end| end > len)
+        {
+            return Err(format!("bufferView {} is out of range", view.index()));
+        }
+    }
+    let data = gltf::image::Data::from_source(image.source(), Some(base), ctx.buffers)
+        .map_err(|e| e.to_string())?;
+    let (w, h) = (data.width as usize, data.height as usize);
+    let n = w * h;
+    let px = &data.pixels;
+    let mut rgba = Vec::with_capacity(n * 4);
+    let f32_at = |i: usize| {
+        let b = [px[i * 4], px[i * 4 + 1], px[i * 4 + 2], px[i * 4 + 3]];
+        (f32::from_le_bytes(b).clamp(0.0, 1.0) * 255.0 + 0.5) as u8
+    };
+    let (channels, bytes_per) = match data.format {
+        Format::R8 => (1, 1),
+        Format::R8G8 => (2, 1),
+        Format::R8G8B8 => (3, 1),
+        Format::R8G8B8A8 => (4, 1),
+        Format::R16 => (1, 2),
+        Format::R16G16 => (2, 2),
+        Format::R16G16B16 => (3, 2),
+        Format::R16G16B16A16 => (4, 2),
+        Format::R32G32B32FLOAT => (3, 4),
+        Format::R32G32B32A32FLOAT => (4, 4),
+    };
+    if px.len() < n * channels * bytes_per {
+        return Err("decoded pixel data is too short".into());
+    }
+    for p in 0..n {
+        let mut c = [0u8, 0, 0, 255];
+        for (ch, out) in c.iter_mut().enumerate().take(channels) {
+            let i = p * channels + ch;
+            *out = match bytes_per {
+                1 => px[i],
+                2 => px[i * 2 + 1], // little-endian u16: keep the high byte
+                _ => f32_at(i),
+            };
+        }
+        match channels {
+            1 => [c[1], c[2]] = [c[0], c[0]],             // grey
+            2 => [c[3], c[1], c[2]] = [c[1], c[0], c[0]], // grey + alpha
+            _ => {}
+        }
+        rgba.extend_from_slice(&c);
+    }
+    Ok(Image {
+        name: image.name().map(str::to_string),
+        width: data.width,
+        height: data.height,
+        rgba8: rgba,
+    })
+}
+
+pub(super) fn load_textures(
+    document: &gltf::Document,
+    image_map: &[Option<u32>],
+) -> Vec<Option<Texture>> {
+    let wrap = |m: WrappingMode| match m {
+        WrappingMode::Repeat => Wrap::Repeat,
+        WrappingMode::ClampToEdge => Wrap::Clamp,
+        WrappingMode::MirroredRepeat => Wrap::Mirror,
+    };
+    document
+        .textures()
+        .map(|t| {
+            let image = image_map.get(t.source().index()).copied().flatten()?;
+            let s = t.sampler();
+            Some(Texture {
+                image,
+                wrap_s: wrap(s.wrap_s()),
+                wrap_t: wrap(s.wrap_t()),
+                nearest: s.mag_filter() == Some(MagFilter::Nearest),
+            })
+        })
+        .collect()
+}
+
+/// Reads every material. Texture indices are remapped to the usable textures, which are
+/// appended to `textures` (compacted: undecodable ones are dropped).
+pub(super) fn load_materials(
+    document: &gltf::Document,
+    all_textures: &[Option<Texture>],
+    textures: &mut Vec<Texture>,
+    ctx: &mut Ctx,
+) -> Vec<Material> {
+    let mut remap: Vec<Option<u32>> = vec![None; all_textures.len()];
+    let mut use_texture = |info: Option<gltf::texture::Info>, slot: &str, ctx: &mut Ctx| {
+        let info = info?;
+        if info.tex_coord() != 0 {
+            let set = info.tex_coord();
+            ctx.warnings.warn(&format!("texcoord{set}"), || {
+                format!("{slot} textures using TEXCOORD_{set} ignored (only TEXCOORD_0)")
+            });
+            return None;
+        }
+        let i = info.texture().index();
+        if let Some(r) = remap[i] {
+            return Some(r);
+        }
+        let tex = all_textures.get(i).copied().flatten()?;
+        let r = textures.len() as u32;
+        textures.push(tex);
+        remap[i] = Some(r);
+        Some(r)
+    };
+    let mut out = Vec::new();
+    for m in document.materials() {
+        let pbr = m.pbr_metallic_roughness();
+        let strength = m.emissive_strength().unwrap_or(1.0);
+        if m.normal_texture().is_some() {
+            ctx.warnings.warn("normalmap", || {
+                "normal maps ignored (interpolated normals used)".into()
+            });
+        }
+        if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
+            ctx.warnings.warn("alpha", || {
+                "alpha modes MASK/BLEND not supported: materials treated as opaque".into()
+            });
+        }
+        let finite = |x: f32, default: f32| if x.is_finite() { x } else { default };
+        let bc = pbr.base_color_factor().map(|x| finite(x, 1.0).max(0.0));
+        let emissive = Vec3::from(m.emissive_factor()) * strength;
+        out.push(Material {
+            name: m.name().map(str::to_string),
+            base_color: bc,
+            metallic: finite(pbr.metallic_factor(), 1.0).clamp(0.0, 1.0),
+            roughness: finite(pbr.roughness_factor(), 1.0).clamp(0.0, 1.0),
+            emissive: if emissive.is_finite() {
+                emissive.max(Vec3::ZERO)
+            } else {
+                Vec3::ZERO
+            },
+            base_color_texture: use_texture(pbr.base_color_texture(), "base color", ctx),
+            metallic_roughness_texture: use_texture(
+                pbr.metallic_roughness_texture(),
+                "metallic-roughness",
+                ctx,
+            ),
+            emissive_texture: use_texture(m.emissive_texture(), "emissive", ctx),
+            double_sided: m.double_sided(),
+        });
+    }
+    out
+}

@@ -1,0 +1,387 @@
+//! glTF 2.0 loading: `.gltf` (embedded base64 or external buffers) and `.glb`.
+//!
+//! What is read: every TRIANGLES primitive of every mesh in the node tree of the default scene
+//! (else the first scene), flattened to world space (normals by the inverse transpose; winding
+//! flipped under mirroring transforms so the face normal keeps pointing out of the front face);
+//! metallic-roughness materials with base color / metallic-roughness / emissive textures and
+//! KHR_materials_emissive_strength; the first perspective camera; the environment.
+//!
+//! Environment: glTF has no environment light, so it is taken from
+//! [`LoadOptions::environment`] if set, else from the scene's `extras`
+//! `{"blueshift_environment": [r, g, b]}` (linear radiance), else black.
+//!
+//! Bad data: a missing file, malformed JSON/GLB, missing buffers, unreadable accessors,
+//! out-of-range vertex indices and non-finite positions are errors ([`SceneError`]).
+//! Zero-area triangles are skipped and counted in one warning. Unsupported content
+//! (non-triangle modes, normal/occlusion maps, texture transforms, punctual lights, other
+//! extensions, undecodable images, ...) is skipped with one warning per kind in
+//! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
+
+mod material;
+mod primitive;
+
+use crate::scene::{Image, Material, Scene, Texture};
+use crate::{Camera, Result, SceneError};
+use glam::{Mat3, Mat4, Vec3};
+use gltf::buffer;
+use std::path::{Path, PathBuf};
+
+/// Options for [`Scene::load_with`].
+#[derive(Clone, Debug, Default)]
+pub struct LoadOptions {
+    /// Overrides the environment radiance from the file (linear RGB).
+    pub environment: Option<Vec3>,
+    /// Do not print warnings to stderr (they are still collected in `Scene::warnings`).
+    pub quiet: bool,
+}
+
+/// The scene `extras` key holding the environment radiance `[r, g, b]`.
+pub const ENVIRONMENT_EXTRAS_KEY: &str = "blueshift_environment";
+
+/// Deepest node hierarchy accepted (deeper means a cycle or a hostile file).
+const MAX_NODE_DEPTH: usize = 256;
+
+/// Collects warnings, one line per kind, with a count of repeats.
+#[derive(Default)]
+pub(crate) struct Warnings {
+    entries: Vec<(String, String, usize)>,
+}
+
+impl Warnings {
+    /// Records a warning of kind `key`; only the first message of a kind is kept.
+    pub(crate) fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
+        match self.entries.iter_mut().find(|(k, _, _)| k == key) {
+            Some(entry) => entry.2 += 1,
+            None => self.entries.push((key.to_string(), message(), 1)),
+        }
+    }
+
+    fn finish(self) -> Vec<String> {
+        self.entries
+            .into_iter()
+            .map(|(_, msg, n)| {
+                if n > 1 {
+                    format!("{msg} ({n} occurrences)")
+                } else {
+                    msg
+                }
+            })
+            .collect()
+    }
+}
+
+/// Shared state while walking one document.
+pub(crate) struct Ctx<'a> {
+    pub path: &'a Path,
+    pub buffers: &'a [buffer::Data],
+    pub warnings: Warnings,
+    pub zero_area: usize,
+}
+
+pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene> {
+    if !path.exists() {
+        return Err(SceneError::NotFound {
+            path: path.to_path_buf(),
+        });
+    }
+    // The gltf crate can still panic on some hostile inputs our own checks miss (its validator
+    // indexes arrays with unchecked references); never let that escape as a panic.
+    install_quiet_panic_hook();
+    QUIET_PANICS.with(|q| q.set(true));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| load_inner(path)));
+    QUIET_PANICS.with(|q| q.set(false));
+    let mut scene = match result {
+        Ok(r) => r?,
+        Err(payload) => {
+            let message = payload
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_else(|| "panic".into());
+            return Err(SceneError::Internal {
+                path: path.to_path_buf(),
+                message,
+            });
+        }
+    };
+    if let Some(env) = options.environment {
+        scene.environment = env;
+    }
+    if !options.quiet {
+        for w in &scene.warnings {
+            eprintln!("warning: {}: {w}", path.display());
+        }
+    }
+    Ok(scene)
+}
+
+thread_local! {
+    static QUIET_PANICS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Wraps the process panic hook once so that a panic caught inside [`load`] on this thread is
+/// not printed (it becomes [`SceneError::Internal`]); every other panic goes to the previous
+/// hook unchanged.
+fn install_quiet_panic_hook() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !QUIET_PANICS.with(|q| q.get()) {
+                previous(info);
+            }
+        }));
+    });
+}
+
+fn load_inner(path: &Path) -> Result<Scene> {
+    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice(&bytes).map_err(|source| SceneError::Parse {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let buffers = load_buffers(path, &document, base, blob)?;
+    let mut ctx = Ctx {
+        path,
+        buffers: &buffers,
+        warnings: Warnings::default(),
+        zero_area: 0,
+    };
+    warn_extensions(&document, &mut ctx.warnings);
+
+    let (images, image_map) = material::load_images(&document, base, &mut ctx);
+    let all_textures = material::load_textures(&document, &image_map);
+    let mut textures = Vec::new();
+    let mut materials = material::load_materials(&document, &all_textures, &mut textures, &mut ctx);
+    let images = compact_images(images, &mut textures);
+    let default_material = materials.len() as u32;
+    materials.push(Material {
+        name: Some("default".into()),
+        ..Material::default()
+    });
+
+    let gltf_scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+        .ok_or_else(|| SceneError::EmptyScene {
+            path: path.to_path_buf(),
+            reason: "the file has no scenes".into(),
+        })?;
+    let environment = environment_from_extras(gltf_scene.extras(), &mut ctx.warnings);
+
+    let mut triangles = Vec::new();
+    let mut camera = None;
+    let mut stack: Vec<(gltf::Node, Mat4, usize)> =
+        gltf_scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    stack.reverse();
+    while let Some((node, parent, depth)) = stack.pop() {
+        if depth >= MAX_NODE_DEPTH {
+            return Err(SceneError::NodeDepth {
+                path: path.to_path_buf(),
+                max_depth: MAX_NODE_DEPTH,
+            });
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if !world.is_finite() {
+            ctx.warnings.warn("transform", || {
+                format!(
+                    "node {} has a non-finite transform; it and its children are skipped",
+                    node.index()
+                )
+            });
+            continue;
+        }
+        if node.skin().is_some() {
+            ctx.warnings.warn("skin", || {
+                "skinning ignored: meshes are drawn in bind pose".into()
+            });
+        }
+        if let Some(cam) = node.camera() {
+            read_camera(&cam, &world, &mut camera, &mut ctx.warnings);
+        }
+        if let Some(mesh) = node.mesh() {
+            let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
+            for prim in mesh.primitives() {
+                primitive::read(
+                    &mut ctx,
+                    &mesh,
+                    &prim,
+                    &world,
+                    &normal_matrix,
+                    default_material,
+                    &mut triangles,
+                )?;
+            }
+        }
+        let children: Vec<_> = node.children().collect();
+        for child in children.into_iter().rev() {
+            stack.push((child, world, depth + 1));
+        }
+    }
+
+    if ctx.zero_area > 0 {
+        let n = ctx.zero_area;
+        ctx.warnings
+            .warn("zero-area", || format!("skipped {n} zero-area triangles"));
+    }
+    if triangles.is_empty() {
+        return Err(SceneError::EmptyScene {
+            path: path.to_path_buf(),
+            reason: format!(
+                "scene {} has no triangle primitives with non-zero area",
+                gltf_scene.index()
+            ),
+        });
+    }
+    Ok(Scene {
+        source: PathBuf::from(path),
+        triangles,
+        materials,
+        textures,
+        images,
+        camera,
+        environment,
+        warnings: ctx.warnings.finish(),
+    })
+}
+
+/// Keeps only the images some material texture uses, remapping the textures.
+fn compact_images(images: Vec<Image>, textures: &mut [Texture]) -> Vec<Image> {
+    let mut remap: Vec<Option<u32>> = vec![None; images.len()];
+    let mut slots: Vec<Option<Image>> = images.into_iter().map(Some).collect();
+    let mut kept = Vec::new();
+    for t in textures.iter_mut() {
+        let i = t.image as usize;
+        if let Some(img) = slots[i].take() {
+            remap[i] = Some(kept.len() as u32);
+            kept.push(img);
+        }
+        t.image = remap[i].unwrap_or_default();
+    }
+    kept
+}
+
+/// Loads every buffer, naming the one that fails.
+fn load_buffers(
+    path: &Path,
+    document: &gltf::Document,
+    base: &Path,
+    mut blob: Option<Vec<u8>>,
+) -> Result<Vec<buffer::Data>> {
+    let mut out = Vec::new();
+    for b in document.buffers() {
+        let uri = match b.source() {
+            buffer::Source::Bin => "GLB binary chunk".to_string(),
+            buffer::Source::Uri(u) if u.starts_with("data:") => "embedded data URI".to_string(),
+            buffer::Source::Uri(u) => u.to_string(),
+        };
+        let err = |problem: String| SceneError::Buffer {
+            path: path.to_path_buf(),
+            index: b.index(),
+            uri: uri.clone(),
+            problem,
+        };
+        let data = buffer::Data::from_source_and_blob(b.source(), Some(base), &mut blob)
+            .map_err(|e| err(format!("cannot load: {e}")))?;
+        if data.len() < b.length() {
+            return Err(err(format!(
+                "has {} bytes but the file declares byteLength {}",
+                data.len(),
+                b.length()
+            )));
+        }
+        out.push(data);
+    }
+    Ok(out)
+}
+
+fn warn_extensions(document: &gltf::Document, warnings: &mut Warnings) {
+    for ext in document.extensions_used() {
+        let reason = match ext {
+            "KHR_materials_emissive_strength" => continue,
+            "KHR_texture_transform" => "ignored: textures are sampled without the transform",
+            "KHR_lights_punctual" => "ignored: only emissive triangles emit light",
+            e if e.starts_with("KHR_materials_") => "ignored: only metallic-roughness is used",
+            _ => "not supported, ignored",
+        };
+        warnings.warn(&format!("ext:{ext}"), || {
+            format!("extension {ext} {reason}")
+        });
+    }
+}
+
+fn environment_from_extras(extras: &gltf::json::Extras, warnings: &mut Warnings) -> Vec3 {
+    let Some(raw) = extras else {
+        return Vec3::ZERO;
+    };
+    let Ok(value) = serde_json::from_str::<serde_json::Value>(raw.get()) else {
+        return Vec3::ZERO;
+    };
+    let Some(env) = value.get(ENVIRONMENT_EXTRAS_KEY) else {
+        return Vec3::ZERO;
+    };
+    let rgb: Option<Vec<f32>> = env.as_array().map(|a| {
+        a.iter()
+            .filter_map(|v| v.as_f64().map(|x| x as f32))
+            .collect()
+    });
+    match rgb {
+        Some(c) if c.len() == 3 && c.iter().all(|x| x.is_finite() && *x >= 0.0) => {
+            Vec3::new(c[0], c[1], c[2])
+        }
+        _ => {
+            warnings.warn("environment", || {
+                format!(
+                    "scene extras {ENVIRONMENT_EXTRAS_KEY} must be [r, g, b] with finite \
+                     non-negative numbers, got {env}; using black"
+                )
+            });
+            Vec3::ZERO
+        }
+    }
+}
+
+fn read_camera(
+    cam: &gltf::Camera,
+    world: &Mat4,
+    camera: &mut Option<Camera>,
+    warnings: &mut Warnings,
+) {
+    match cam.projection() {
+        gltf::camera::Projection::Perspective(p) => {
+            if camera.is_some() {
+                return; // the first camera wins
+            }
+            let position = world.transform_point3(Vec3::ZERO);
+            let forward = world.transform_vector3(Vec3::NEG_Z);
+            let up = world.transform_vector3(Vec3::Y);
+            let yfov = p.yfov();
+            if forward.length() > 0.0
+                && up.length() > 0.0
+                && yfov > 0.0
+                && yfov < std::f32::consts::PI
+            {
+                *camera = Some(Camera {
+                    position,
+                    target: position + forward.normalize(),
+                    up: up.normalize(),
+                    yfov,
+                });
+            } else {
+                warnings.warn("camera", || {
+                    format!("camera {} is degenerate and ignored", cam.index())
+                });
+            }
+        }
+        gltf::camera::Projection::Orthographic(_) => {
+            warnings.warn("ortho", || {
+                "orthographic cameras are not supported and ignored".into()
+            });
+        }
+    }
+}

@@ -1,0 +1,176 @@
+//! The CPU scene: world-space triangles, materials, textures, camera, environment.
+
+use crate::load::{self, LoadOptions};
+use crate::{Aabb, Camera, Result, SceneError, gpu};
+use glam::{Vec2, Vec3};
+use std::path::{Path, PathBuf};
+
+/// One world-space triangle with its shading attributes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Triangle {
+    pub positions: [Vec3; 3],
+    /// Unit shading normals (the flat face normal where the file had none).
+    pub normals: [Vec3; 3],
+    /// TEXCOORD_0 (zero where the file had none).
+    pub uvs: [Vec2; 3],
+    /// Index into [`Scene::materials`].
+    pub material: u32,
+}
+
+/// A glTF metallic-roughness material (factors linear; texture indices into
+/// [`Scene::textures`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: Option<String>,
+    pub base_color: [f32; 4],
+    pub metallic: f32,
+    pub roughness: f32,
+    /// Emissive factor times KHR_materials_emissive_strength.
+    pub emissive: Vec3,
+    pub base_color_texture: Option<u32>,
+    pub metallic_roughness_texture: Option<u32>,
+    pub emissive_texture: Option<u32>,
+    pub double_sided: bool,
+}
+
+impl Default for Material {
+    /// The glTF default material (white, fully metallic, fully rough; glTF spec 3.9.6).
+    fn default() -> Self {
+        Material {
+            name: None,
+            base_color: [1.0; 4],
+            metallic: 1.0,
+            roughness: 1.0,
+            emissive: Vec3::ZERO,
+            base_color_texture: None,
+            metallic_roughness_texture: None,
+            emissive_texture: None,
+            double_sided: false,
+        }
+    }
+}
+
+/// Texture coordinate wrap mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Wrap {
+    #[default]
+    Repeat,
+    Clamp,
+    Mirror,
+}
+
+/// A texture: an image plus sampler state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Texture {
+    /// Index into [`Scene::images`].
+    pub image: u32,
+    pub wrap_s: Wrap,
+    pub wrap_t: Wrap,
+    pub nearest: bool,
+}
+
+/// A decoded image, RGBA8, row-major, top row first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub name: Option<String>,
+    pub width: u32,
+    pub height: u32,
+    pub rgba8: Vec<u8>,
+}
+
+/// A loaded scene. Build its GPU form with [`crate::SceneGpu::build`].
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The file it came from.
+    pub source: PathBuf,
+    pub triangles: Vec<Triangle>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub images: Vec<Image>,
+    /// The first perspective camera of the scene's node tree, if any.
+    pub camera: Option<Camera>,
+    /// Constant environment radiance (linear RGB) seen by rays that leave the scene.
+    pub environment: Vec3,
+    /// One line per kind of unsupported or skipped content (also printed once to stderr).
+    pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// Loads a `.gltf` (embedded or external buffers) or `.glb` file with default options.
+    pub fn load(path: impl AsRef<Path>) -> Result<Scene> {
+        load::load(path.as_ref(), &LoadOptions::default())
+    }
+
+    /// Loads with options (e.g. an environment override).
+    pub fn load_with(path: impl AsRef<Path>, options: &LoadOptions) -> Result<Scene> {
+        load::load(path.as_ref(), options)
+    }
+
+    /// World-space bounds of all triangles.
+    pub fn bounds(&self) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for t in &self.triangles {
+            for &p in &t.positions {
+                b.grow_point(p);
+            }
+        }
+        b
+    }
+
+    /// The file's camera, or [`Camera::framing`] of the scene bounds.
+    pub fn camera_or_default(&self) -> Camera {
+        self.camera
+            .unwrap_or_else(|| Camera::framing(&self.bounds()))
+    }
+
+    /// Checks that every GPU buffer of this scene fits `maxStorageBufferRange` before building
+    /// anything. The BVH node buffer is bounded by its worst case (2n - 1 nodes); use
+    /// [`crate::SceneGpu::check_limits`] for the exact sizes after the build.
+    pub fn check_limits(&self, max_storage_buffer_range: u64) -> Result<()> {
+        let n = self.triangles.len() as u64;
+        let emissive = self
+            .triangles
+            .iter()
+            .filter(|t| {
+                self.materials
+                    .get(t.material as usize)
+                    .is_some_and(|m| m.emissive.max_element() > 0.0)
+            })
+            .count() as u64;
+        let texels: u64 = self
+            .images
+            .iter()
+            .map(|i| i.width as u64 * i.height as u64)
+            .sum();
+        let sizes = [
+            (
+                "BVH node",
+                (2 * n).saturating_sub(1) * size_of::<gpu::BvhNode>() as u64,
+            ),
+            ("BVH triangle", n * size_of::<gpu::GpuTriangle>() as u64),
+            (
+                "triangle shading",
+                n * size_of::<gpu::TriangleShading>() as u64,
+            ),
+            (
+                "material",
+                self.materials.len() as u64 * size_of::<gpu::GpuMaterial>() as u64,
+            ),
+            (
+                "texture table",
+                self.textures.len() as u64 * size_of::<gpu::GpuTexture>() as u64,
+            ),
+            ("texel", texels * 4),
+            ("light", emissive * size_of::<gpu::GpuLight>() as u64),
+        ];
+        check_sizes(&sizes, max_storage_buffer_range)
+    }
+}
+
+/// The first buffer over the limit, as an error.
+pub(crate) fn check_sizes(sizes: &[(&'static str, u64)], limit: u64) -> Result<()> {
+    match sizes.iter().find(|(_, size)| *size > limit) {
+        Some(&(buffer, size)) => Err(SceneError::over_limit(buffer, size, limit)),
+        None => Ok(()),
+    }
+}

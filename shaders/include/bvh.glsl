@@ -1,0 +1,215 @@
+// BVH traversal: closest hit and occlusion over the scene BVH built by blueshift-scene.
+// GPU twin of crates/scene/src/intersect.rs: same traversal order, same slab test, same
+// Möller–Trumbore operation order (`precise` forbids fused multiply-adds, which Rust does not
+// use either), ties broken by the smaller triangle index. Keep the two in sync.
+//
+// Requirements of the INCLUDING shader, before `#include "bvh.glsl"`:
+//   #extension GL_EXT_scalar_block_layout : require
+//   #include "generated/scene.glsl"             // BvhNode, GpuTriangle, Ray, Hit, BVH_STACK_SIZE
+//   layout(scalar, set = S, binding = B) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
+//   layout(scalar, set = S, binding = C) readonly buffer BvhTriangles { GpuTriangle bvh_triangles[]; };
+// (set and bindings are the including shader's choice; only the array names are fixed.)
+//
+// API:
+//   bool bvh_closest_hit(Ray ray, out Hit hit)  closest t in [ray.tmin, ray.tmax]; on a miss
+//                                               hit = {ray.tmax, HIT_MISS, 0, 0}, returns false
+//   bool bvh_occluded(Ray ray)                  any hit with t in [ray.tmin, ray.tmax]
+//   bool bvh_intersect_triangle(Ray, GpuTriangle, float tmax, out float t, out float u, out float v)
+#ifndef BVH_GLSL
+#define BVH_GLSL
+
+// Box exit distances, and the closest t they are compared with, are scaled by this so
+// rounding never culls a box holding a triangle at (or within rounding of) the closest hit
+// (Rust: BOX_TFAR_SCALE). Direction components below 1e-30 are replaced by +-1e-30 before
+// inverting (Rust: MIN_DIR_COMPONENT).
+const float BVH_TFAR_SCALE = 1.000002;
+const float BVH_MIN_DIR_COMPONENT = 1e-30;
+
+float bvh_safe_component(float x) {
+    if (abs(x) < BVH_MIN_DIR_COMPONENT) {
+        return x >= 0.0 ? BVH_MIN_DIR_COMPONENT : -BVH_MIN_DIR_COMPONENT;
+    }
+    return x;
+}
+
+vec3 bvh_safe_inverse(vec3 d) {
+    precise vec3 inv = vec3(1.0 / bvh_safe_component(d.x), 1.0 / bvh_safe_component(d.y),
+                            1.0 / bvh_safe_component(d.z));
+    return inv;
+}
+
+// Slab test: true if the box overlaps [tmin, tmax]; tnear = entry distance.
+bool bvh_box_entry(vec3 bmin, vec3 bmax, vec3 origin, vec3 inv, float tmin, float tmax,
+                   out float tnear) {
+    precise vec3 t0 = (bmin - origin) * inv;
+    precise vec3 t1 = (bmax - origin) * inv;
+    vec3 lo = min(t0, t1);
+    vec3 hi = max(t0, t1);
+    tnear = max(max(max(lo.x, lo.y), lo.z), tmin);
+    precise float tfar = min(min(min(hi.x, hi.y), hi.z) * BVH_TFAR_SCALE, tmax * BVH_TFAR_SCALE);
+    return tnear <= tfar;
+}
+
+vec3 bvh_cross(vec3 a, vec3 b) {
+    precise vec3 c = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+    return c;
+}
+
+float bvh_dot(vec3 a, vec3 b) {
+    precise float d = a.x * b.x + a.y * b.y + a.z * b.z;
+    return d;
+}
+
+// Möller–Trumbore; edges count as inside.
+bool bvh_intersect_triangle(Ray ray, GpuTriangle tri, float tmax, out float t, out float u,
+                            out float v) {
+    t = 0.0;
+    u = 0.0;
+    v = 0.0;
+    vec3 pvec = bvh_cross(ray.dir, tri.e2);
+    float det = bvh_dot(tri.e1, pvec);
+    if (det == 0.0) {
+        return false;
+    }
+    precise float inv_det = 1.0 / det;
+    precise vec3 tvec = ray.origin - tri.v0;
+    u = bvh_dot(tvec, pvec) * inv_det;
+    if (!(u >= 0.0 && u <= 1.0)) {
+        return false;
+    }
+    vec3 qvec = bvh_cross(tvec, tri.e1);
+    v = bvh_dot(ray.dir, qvec) * inv_det;
+    precise float uv_sum = u + v;
+    if (!(v >= 0.0 && uv_sum <= 1.0)) {
+        return false;
+    }
+    t = bvh_dot(tri.e2, qvec) * inv_det;
+    return t >= ray.tmin && t <= tmax;
+}
+
+bool bvh_closest_hit(Ray ray, out Hit hit) {
+    hit.t = ray.tmax;
+    hit.triangle = HIT_MISS;
+    hit.u = 0.0;
+    hit.v = 0.0;
+    vec3 inv = bvh_safe_inverse(ray.dir);
+    float t_root;
+    if (!bvh_box_entry(bvh_nodes[0].aabb_min, bvh_nodes[0].aabb_max, ray.origin, inv, ray.tmin,
+                       hit.t, t_root)) {
+        return false;
+    }
+    uint stack[BVH_STACK_SIZE];
+    float stack_t[BVH_STACK_SIZE];
+    uint sp = 0u;
+    uint node = 0u;
+    while (true) {
+        BvhNode n = bvh_nodes[node];
+        bool descend = false;
+        if (n.count > 0u) {
+            for (uint i = n.left_first; i < n.left_first + n.count; ++i) {
+                float t, u, v;
+                if (bvh_intersect_triangle(ray, bvh_triangles[i], hit.t, t, u, v) &&
+                    (t < hit.t || i < hit.triangle)) {
+                    hit.t = t;
+                    hit.triangle = i;
+                    hit.u = u;
+                    hit.v = v;
+                }
+            }
+        } else {
+            uint l = n.left_first;
+            uint r = l + 1u;
+            float tl, tr;
+            bool hl = bvh_box_entry(bvh_nodes[l].aabb_min, bvh_nodes[l].aabb_max, ray.origin, inv,
+                                    ray.tmin, hit.t, tl);
+            bool hr = bvh_box_entry(bvh_nodes[r].aabb_min, bvh_nodes[r].aabb_max, ray.origin, inv,
+                                    ray.tmin, hit.t, tr);
+            if (hl && hr) {
+                bool left_near = tl <= tr;
+                if (sp < BVH_STACK_SIZE) {
+                    stack[sp] = left_near ? r : l;
+                    stack_t[sp] = left_near ? tr : tl;
+                    sp++;
+                }
+                node = left_near ? l : r;
+                descend = true;
+            } else if (hl) {
+                node = l;
+                descend = true;
+            } else if (hr) {
+                node = r;
+                descend = true;
+            }
+        }
+        if (descend) {
+            continue;
+        }
+        // Pop the next far child that can still hold a closer hit.
+        bool found = false;
+        while (sp > 0u) {
+            sp--;
+            if (stack_t[sp] <= hit.t * BVH_TFAR_SCALE) {
+                node = stack[sp];
+                found = true;
+                break;
+            }
+        }
+        if (!found) {
+            break;
+        }
+    }
+    return hit.triangle != HIT_MISS;
+}
+
+bool bvh_occluded(Ray ray) {
+    vec3 inv = bvh_safe_inverse(ray.dir);
+    float t_root;
+    if (!bvh_box_entry(bvh_nodes[0].aabb_min, bvh_nodes[0].aabb_max, ray.origin, inv, ray.tmin,
+                       ray.tmax, t_root)) {
+        return false;
+    }
+    uint stack[BVH_STACK_SIZE];
+    uint sp = 0u;
+    uint node = 0u;
+    while (true) {
+        BvhNode n = bvh_nodes[node];
+        if (n.count > 0u) {
+            for (uint i = n.left_first; i < n.left_first + n.count; ++i) {
+                float t, u, v;
+                if (bvh_intersect_triangle(ray, bvh_triangles[i], ray.tmax, t, u, v)) {
+                    return true;
+                }
+            }
+        } else {
+            uint l = n.left_first;
+            uint r = l + 1u;
+            float tl, tr;
+            bool hl = bvh_box_entry(bvh_nodes[l].aabb_min, bvh_nodes[l].aabb_max, ray.origin, inv,
+                                    ray.tmin, ray.tmax, tl);
+            bool hr = bvh_box_entry(bvh_nodes[r].aabb_min, bvh_nodes[r].aabb_max, ray.origin, inv,
+                                    ray.tmin, ray.tmax, tr);
+            if (hl && hr) {
+                if (sp < BVH_STACK_SIZE) {
+                    stack[sp] = r;
+                    sp++;
+                }
+                node = l;
+                continue;
+            } else if (hl) {
+                node = l;
+                continue;
+            } else if (hr) {
+                node = r;
+                continue;
+            }
+        }
+        if (sp == 0u) {
+            return false;
+        }
+        sp--;
+        node = stack[sp];
+    }
+    return false;
+}
+
+#endif

@@ -1,0 +1,268 @@
+//! Command-line interface (clap derive). Every subcommand is deterministic given its flags.
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+use crate::commands;
+
+/// Precompute masks, retarget tables, spectra and figures for Blueshift.
+#[derive(Debug, Parser)]
+#[command(name = "blueshift-tools", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Void-and-cluster blue-noise mask (2D, or spatio-temporal with --frames > 1).
+    Mask(MaskArgs),
+    /// Bayer (ordered dither) mask.
+    Bayer(BayerArgs),
+    /// White-noise mask (random permutation of ranks).
+    White(WhiteArgs),
+    /// Power spectra, radial profiles and LF of images and masks.
+    Spectrum(SpectrumArgs),
+    /// Threshold-dither an image against a tiled mask.
+    Dither(DitherArgs),
+    /// Retargeting permutation of a mask for a per-frame shift.
+    Retarget(RetargetArgs),
+    /// Figures: white / blue / Bayer textures, spectra, radial profiles, dithered gradient.
+    Figures(FiguresArgs),
+    /// Regenerate every committed asset and write the MANIFEST.
+    Assets(AssetsArgs),
+    /// Check the SHA-256 hashes listed in a MANIFEST.
+    Manifest(ManifestArgs),
+    /// Write the bundled glTF scenes (cornell-box, textured, edges).
+    Scene(SceneArgs),
+}
+
+/// `scene` flags.
+#[derive(Debug, clap::Args)]
+pub struct SceneArgs {
+    /// Preset name, or `all`.
+    #[arg(long, default_value = "all")]
+    pub name: String,
+    /// Output directory.
+    #[arg(long, default_value = "assets/scenes")]
+    pub out: std::path::PathBuf,
+}
+
+/// `mask` flags.
+#[derive(Debug, clap::Args)]
+pub struct MaskArgs {
+    /// Side of the mask (power of two, 4..=256).
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Gaussian energy sigma in pixels.
+    #[arg(long, default_value_t = 1.9)]
+    pub sigma: f64,
+    /// Initial density of the binary pattern.
+    #[arg(long, default_value_t = 0.1)]
+    pub density: f64,
+    /// Number of slices; > 1 makes a spatio-temporal mask.
+    #[arg(long, default_value_t = 1)]
+    pub frames: usize,
+    /// Temporal energy sigma in frames (spatio-temporal only).
+    #[arg(long, default_value_t = 1.9)]
+    pub sigma_t: f64,
+    /// PRNG seed of the initial pattern.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output `.r16`; a 16-bit PNG preview is written beside it (`.png`).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `bayer` flags.
+#[derive(Debug, clap::Args)]
+pub struct BayerArgs {
+    /// Side (power of two, 2..=256).
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Output `.r16` (plus `.png` preview).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `white` flags.
+#[derive(Debug, clap::Args)]
+pub struct WhiteArgs {
+    /// Side (power of two, 2..=256).
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// PRNG seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output `.r16` (plus `.png` preview).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `spectrum` flags.
+#[derive(Debug, clap::Args)]
+pub struct SpectrumArgs {
+    /// PNG/EXR images or `.r16` masks.
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Tile side for images (Hann-windowed tiles, evaluation.md).
+    #[arg(long, default_value_t = 64)]
+    pub tile: usize,
+    /// Treat square images as periodic tiles: unwindowed periodogram of the whole image.
+    #[arg(long)]
+    pub periodic: bool,
+    /// Read `.r16` inputs as spatio-temporal volumes with this slice side (averages the
+    /// slices' periodograms).
+    #[arg(long)]
+    pub stbn_size: Option<usize>,
+}
+
+/// How image values map to the thesis' gray level `p` (probability of black).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum GrayIs {
+    /// Pixel value is brightness: `p = 1 - value` (output looks like the input).
+    Brightness,
+    /// Pixel value is `p` itself (black where mask <= value).
+    Darkness,
+}
+
+/// `dither` flags.
+#[derive(Debug, clap::Args)]
+pub struct DitherArgs {
+    /// Grayscale or RGB image (RGB is reduced to luminance).
+    pub image: PathBuf,
+    /// Mask `.r16`.
+    #[arg(long)]
+    pub mask: PathBuf,
+    /// Output PNG.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Meaning of pixel values.
+    #[arg(long, value_enum, default_value_t = GrayIs::Brightness)]
+    pub gray_is: GrayIs,
+    /// Write the mask's result, a Bayer and a white-noise mask of the same side, side by side.
+    #[arg(long)]
+    pub compare: bool,
+    /// Seed of the white-noise mask for --compare.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+/// Retarget solvers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Solver {
+    /// Min-cost bipartite matching (optimal).
+    Exact,
+    /// Simulated annealing (the paper's method).
+    Anneal,
+}
+
+/// `retarget` flags.
+#[derive(Debug, clap::Args)]
+pub struct RetargetArgs {
+    /// Mask `.r16`.
+    #[arg(long)]
+    pub mask: PathBuf,
+    /// Per-frame shift `SX,SY`; default `(round(N/g), round(N/g^2))`, g the plastic number.
+    #[arg(long)]
+    pub shift: Option<String>,
+    /// Maximum Euclidean displacement.
+    #[arg(long, default_value_t = 6)]
+    pub radius: u32,
+    /// Solver.
+    #[arg(long, value_enum, default_value_t = Solver::Exact)]
+    pub solver: Solver,
+    /// PRNG seed (annealing).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Annealing proposals (default 15000 N^2).
+    #[arg(long)]
+    pub proposals: Option<u64>,
+    /// Output `.bin`.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Optional PNG view: R = dx, G = dy, mapped from `[-R, R]` to `[0, 255]`.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+}
+
+/// `figures` flags.
+#[derive(Debug, clap::Args)]
+pub struct FiguresArgs {
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "docs/figures")]
+    pub out: PathBuf,
+    /// Mask side.
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Seed of the blue and white masks.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+/// `assets` flags.
+#[derive(Debug, clap::Args)]
+pub struct AssetsArgs {
+    /// Asset root (run from the repository root so MANIFEST commands read `assets/...`).
+    #[arg(long, default_value = "assets")]
+    pub root: PathBuf,
+}
+
+/// `manifest` flags.
+#[derive(Debug, clap::Args)]
+pub struct ManifestArgs {
+    /// Verify every listed hash (the only action so far).
+    #[arg(long)]
+    pub check: bool,
+    /// The MANIFEST file; paths in it are relative to its directory.
+    #[arg(long, default_value = "assets/MANIFEST")]
+    pub manifest: PathBuf,
+}
+
+/// Runs one parsed command line.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Mask(a) => commands::masks::mask(&a),
+        Command::Bayer(a) => commands::masks::bayer(&a),
+        Command::White(a) => commands::masks::white(&a),
+        Command::Spectrum(a) => commands::spectrum::spectrum(&a),
+        Command::Dither(a) => commands::dither::dither(&a),
+        Command::Retarget(a) => commands::retarget::retarget(&a),
+        Command::Figures(a) => commands::figures::figures(&a),
+        Command::Assets(a) => commands::assets::assets(&a),
+        Command::Manifest(a) => commands::assets::manifest(&a),
+        Command::Scene(a) => scene(&a),
+    }
+}
+
+/// Writes the bundled scene presets.
+fn scene(a: &SceneArgs) -> anyhow::Result<()> {
+    let names: Vec<&str> = if a.name == "all" {
+        blueshift_scene::presets::PRESETS.to_vec()
+    } else {
+        vec![a.name.as_str()]
+    };
+    std::fs::create_dir_all(&a.out)?;
+    for n in names {
+        let p = blueshift_scene::presets::write_preset(n, &a.out)?;
+        println!("wrote {}", p.display());
+    }
+    Ok(())
+}
+
+/// Parses `args` (without the program name) and runs them.
+pub fn run_args<I, S>(args: I) -> anyhow::Result<()>
+where
+    I: IntoIterator<Item = S>,
+    S: Into<std::ffi::OsString> + Clone,
+{
+    let argv = std::iter::once(std::ffi::OsString::from("blueshift-tools"))
+        .chain(args.into_iter().map(Into::into));
+    run(Cli::try_parse_from(argv)?)
+}

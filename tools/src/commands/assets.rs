@@ -1,0 +1,144 @@
+//! `assets` (regenerate everything + MANIFEST) and `manifest --check`.
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+
+use crate::cli::{AssetsArgs, ManifestArgs, run_args};
+use crate::manifest::{self, Entry};
+
+/// One generation step: the arguments, its seed, and the files it writes (relative to the
+/// asset root).
+pub struct Job {
+    /// Arguments after `blueshift-tools`.
+    pub args: Vec<String>,
+    /// PRNG seed recorded in the MANIFEST.
+    pub seed: u64,
+    /// Outputs relative to the asset root.
+    pub outputs: Vec<String>,
+}
+
+fn job(args: &str, seed: u64, outputs: &[&str], root: &str) -> Job {
+    Job {
+        args: args
+            .replace("{root}", root)
+            .split_whitespace()
+            .map(str::to_string)
+            .collect(),
+        seed,
+        outputs: outputs.iter().map(|s| s.to_string()).collect(),
+    }
+}
+
+/// The committed assets, in generation order (masks before the tables that read them).
+pub fn jobs(root: &str) -> Vec<Job> {
+    let vc = "mask --sigma 1.9 --density 0.1";
+    vec![
+        job(
+            &format!("{vc} --size 32 --seed 32 --out {{root}}/masks/bn32.r16"),
+            32,
+            &["masks/bn32.r16", "masks/bn32.png"],
+            root,
+        ),
+        job(
+            &format!("{vc} --size 64 --seed 64 --out {{root}}/masks/bn64.r16"),
+            64,
+            &["masks/bn64.r16", "masks/bn64.png"],
+            root,
+        ),
+        job(
+            &format!("{vc} --size 128 --seed 128 --out {{root}}/masks/bn128.r16"),
+            128,
+            &["masks/bn128.r16", "masks/bn128.png"],
+            root,
+        ),
+        job(
+            &format!(
+                "{vc} --size 64 --frames 32 --sigma-t 1.9 --seed 6432 --out {{root}}/masks/stbn64x32.r16"
+            ),
+            6432,
+            &["masks/stbn64x32.r16", "masks/stbn64x32.png"],
+            root,
+        ),
+        job(
+            "retarget --mask {root}/masks/bn32.r16 --shift 24,18 --radius 6 --solver exact --seed 1 \
+             --out {root}/retarget/bn32_s24_18_r6.bin",
+            1,
+            &["retarget/bn32_s24_18_r6.bin"],
+            root,
+        ),
+        job(
+            "retarget --mask {root}/masks/bn64.r16 --shift 48,36 --radius 6 --solver exact --seed 1 \
+             --out {root}/retarget/bn64_s48_36_r6.bin",
+            1,
+            &["retarget/bn64_s48_36_r6.bin"],
+            root,
+        ),
+        job(
+            "retarget --mask {root}/masks/bn128.r16 --shift 97,73 --radius 6 --solver exact --seed 1 \
+             --out {root}/retarget/bn128_s97_73_r6.bin",
+            1,
+            &["retarget/bn128_s97_73_r6.bin"],
+            root,
+        ),
+    ]
+}
+
+pub(crate) fn assets(a: &AssetsArgs) -> anyhow::Result<()> {
+    let root = a.root.to_str().context("--root must be valid UTF-8")?;
+    if root.contains(char::is_whitespace) {
+        bail!("--root {root:?}: no whitespace allowed (it goes into MANIFEST commands)");
+    }
+    let mut entries = Vec::new();
+    for j in jobs(root) {
+        let command = format!("blueshift-tools {}", j.args.join(" "));
+        println!("$ {command}");
+        let t = Instant::now();
+        run_args(j.args.clone()).with_context(|| format!("running {command}"))?;
+        println!("  ({:.2} s)", t.elapsed().as_secs_f64());
+        for o in &j.outputs {
+            entries.push(Entry {
+                path: o.clone(),
+                sha256: manifest::sha256_file(&a.root.join(o))?,
+                seed: j.seed,
+                command: command.clone(),
+            });
+        }
+    }
+    let path = a.root.join("MANIFEST");
+    blueshift_analysis::write_atomic(&path, manifest::format(&entries).as_bytes())?;
+    println!("wrote {} ({} files)", path.display(), entries.len());
+    Ok(())
+}
+
+pub(crate) fn manifest(a: &ManifestArgs) -> anyhow::Result<()> {
+    if !a.check {
+        bail!("nothing to do: pass --check");
+    }
+    let bad = manifest::check(&a.manifest)?;
+    if !bad.is_empty() {
+        for b in &bad {
+            eprintln!("{b}");
+        }
+        bail!(
+            "{} file(s) do not match {}",
+            bad.len(),
+            a.manifest.display()
+        );
+    }
+    let n = manifest::parse(&std::fs::read_to_string(&a.manifest)?)?.len();
+    println!("{}: all {n} hashes match", a.manifest.display());
+    Ok(())
+}
+
+/// Runs every job whose outputs include `rel`, with the asset root replaced by `root`.
+pub fn regenerate(rel: &str, root: &Path) -> anyhow::Result<()> {
+    let r = root.to_str().context("root must be UTF-8")?;
+    for j in jobs(r) {
+        if j.outputs.iter().any(|o| o == rel) {
+            return run_args(j.args);
+        }
+    }
+    bail!("no job writes {rel}")
+}
