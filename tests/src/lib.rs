@@ -11,6 +11,8 @@ use blueshift_device::{
 #[cfg(test)]
 mod bindings;
 #[cfg(test)]
+mod bvh;
+#[cfg(test)]
 mod headers;
 #[cfg(test)]
 mod permute;
