@@ -1,5 +1,6 @@
 #version 460
-// Path-tracing pass: one invocation per pixel, spp paths per frame, software BVH traversal,
+// Path-tracing pass: one invocation per pixel and one path per dispatch (the host dispatches
+// spp times per frame), software BVH traversal,
 // glTF BRDF, next-event estimation on emissive triangles with MIS (power heuristic) against
 // BRDF sampling, constant environment, Russian roulette. All randomness comes from the pixel's
 // seed in the seed buffer (see sample_dim), so moving seeds moves whole estimates.
@@ -23,7 +24,7 @@ layout(set = 0, binding = 6, scalar) readonly buffer Lights { GpuLight lights[];
 layout(set = 0, binding = 7, scalar) readonly buffer Info { SceneInfo scene; };
 layout(set = 0, binding = 8, scalar) readonly buffer Seeds { uint seeds[]; };
 layout(set = 0, binding = 9, scalar) readonly buffer Mask { uint mask[]; };
-layout(set = 0, binding = 10, scalar) writeonly buffer Estimate { vec4 estimate[]; };
+layout(set = 0, binding = 10, scalar) buffer Estimate { vec4 estimate[]; };
 
 #include "bvh.glsl"
 #include "brdf.glsl"
@@ -35,11 +36,11 @@ void main() {
     if (px.x >= pc.width || px.y >= pc.height) return;
     uint seed = seeds[px.y * pc.stride + px.x];
     if ((pc.flags & TRACE_FLAG_SALT_FRAME) != 0u) seed = hash3(seed, pc.frame, 0x5a17u);
-    vec3 sum = vec3(0.0);
-    for (uint s = 0u; s < pc.spp; ++s) {
-        uint index = (pc.flags & TRACE_FLAG_ADVANCE_INDEX) != 0u ? pc.frame * pc.spp + s : s;
-        sum += trace_path(px, seed, index, s);
-    }
-    vec3 l = sum / float(pc.spp);
-    estimate[px.y * pc.width + px.x] = vec4(l, luminance(l));
+    uint s = pc.sample_index;
+    uint index = (pc.flags & TRACE_FLAG_ADVANCE_INDEX) != 0u ? pc.frame * pc.spp + s : s;
+    vec3 l = trace_path(px, seed, index, s);
+    // Running mean over this frame's dispatches (one per sample, see TraceParams::sample_index).
+    uint o = px.y * pc.width + px.x;
+    if (s > 0u) l = estimate[o].rgb + (l - estimate[o].rgb) / float(s + 1u);
+    estimate[o] = vec4(l, luminance(l));
 }

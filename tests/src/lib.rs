@@ -20,6 +20,8 @@ mod permute;
 mod rng;
 #[cfg(test)]
 mod sampling;
+#[cfg(test)]
+mod trace;
 
 /// A validated device plus a recorder. Panics on drop if validation reported anything.
 pub struct Gpu {

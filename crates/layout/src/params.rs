@@ -34,7 +34,7 @@ gpu_struct! {
 }
 
 gpu_struct! {
-    /// Push constants of `trace/trace` (116 bytes: fits the 128-byte minimum limit).
+    /// Push constants of `trace/trace` (120 bytes: fits the 128-byte minimum limit).
     pub struct TraceParams {
         pub cam_origin: glam::Vec3,
         pub cam_forward: glam::Vec3,
@@ -47,6 +47,10 @@ gpu_struct! {
         pub stride: u32,
         pub frame: u32,
         pub spp: u32,
+        /// The sample of this dispatch (0..spp): one dispatch per sample keeps every invocation
+        /// far below llvmpipe's limit of 65535 loop iterations per shader invocation (shared by
+        /// all loops; past it loops silently exit), which many samples in one dispatch exceed.
+        pub sample_index: u32,
         /// Maximum path vertices after the camera (1 = direct light only).
         pub max_bounces: u32,
         /// `SAMPLER_*` constant of sampling.glsl.

@@ -328,6 +328,7 @@ impl Renderer {
             stride: self.screen.stride(),
             frame: self.frame as u32,
             spp: c.spp,
+            sample_index: 0,
             max_bounces: c.bounces,
             sampler_kind: c.sampler.unwrap_or(m.default_sampler()) as u32,
             flags,

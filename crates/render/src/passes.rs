@@ -74,7 +74,8 @@ impl ImagePasses {
         })
     }
 
-    /// Records the path-tracing pass writing the raw estimate of this frame.
+    /// Records the path-tracing pass writing the raw estimate of this frame: one dispatch per
+    /// sample (see `TraceParams::sample_index`).
     pub fn trace(
         &self,
         rec: &mut Recorder,
@@ -85,6 +86,25 @@ impl ImagePasses {
         estimate: &Buffer,
     ) -> Result<()> {
         let s = scene;
+        for sample in 0..p.spp {
+            let p = TraceParams {
+                sample_index: sample,
+                ..*p
+            };
+            self.trace_one(rec, &p, s, seeds, mask, estimate)?;
+        }
+        Ok(())
+    }
+
+    fn trace_one(
+        &self,
+        rec: &mut Recorder,
+        p: &TraceParams,
+        s: &SceneBuffers,
+        seeds: &Buffer,
+        mask: &Buffer,
+        estimate: &Buffer,
+    ) -> Result<()> {
         rec.dispatch(
             &self.trace,
             &[
