@@ -121,7 +121,10 @@ vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
 }
 
 vec3 trace_path(uvec2 px, uint seed, uint index, uint s) {
-    vec2 jitter = vec2(sample_dim(px, seed, index, s, 0u), sample_dim(px, seed, index, s, 1u));
+    vec2 jitter = vec2(0.5);
+    if ((pc.flags & TRACE_FLAG_NO_JITTER) == 0u) {
+        jitter = vec2(sample_dim(px, seed, index, s, 0u), sample_dim(px, seed, index, s, 1u));
+    }
     vec2 ndc = (vec2(px) + pc.view_offset + jitter) / pc.view_size * 2.0 - 1.0;
     vec3 dir = normalize(pc.cam_forward + ndc.x * pc.cam_right - ndc.y * pc.cam_up);
     Ray ray = Ray(pc.cam_origin, 0.0, dir, 1e30);

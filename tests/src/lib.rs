@@ -11,6 +11,8 @@ use blueshift_device::{
 #[cfg(test)]
 mod bindings;
 #[cfg(test)]
+mod blue;
+#[cfg(test)]
 mod bvh;
 #[cfg(test)]
 mod headers;

@@ -18,6 +18,7 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .push::<params::ImageParams>()
                 .constant("TRACE_FLAG_SALT_FRAME", params::TRACE_FLAG_SALT_FRAME)
                 .constant("TRACE_FLAG_ADVANCE_INDEX", params::TRACE_FLAG_ADVANCE_INDEX)
+                .constant("TRACE_FLAG_NO_JITTER", params::TRACE_FLAG_NO_JITTER)
                 .constant("MASK_MODE_NONE", params::MASK_MODE_NONE)
                 .constant("MASK_MODE_2D", params::MASK_MODE_2D)
                 .constant("MASK_MODE_SPATIOTEMPORAL", params::MASK_MODE_SPATIOTEMPORAL)

@@ -76,6 +76,10 @@ gpu_struct! {
 pub const TRACE_FLAG_SALT_FRAME: u32 = 1;
 /// `TraceParams::flags`: sample index = frame * spp + s (a progressive sequence per pixel).
 pub const TRACE_FLAG_ADVANCE_INDEX: u32 = 2;
+/// `TraceParams::flags`: primary rays through pixel centres (no anti-aliasing jitter), so the
+/// error is the light-transport integrand's alone; edges of visible emitters otherwise
+/// dominate every error metric.
+pub const TRACE_FLAG_NO_JITTER: u32 = 4;
 /// `TraceParams::mask_mode` values.
 pub const MASK_MODE_NONE: u32 = 0;
 pub const MASK_MODE_2D: u32 = 1;

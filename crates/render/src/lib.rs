@@ -28,7 +28,7 @@ pub use upload::SceneBuffers;
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
-    TRACE_FLAG_SALT_FRAME, TraceParams,
+    TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
 use blueshift_permute::{PermutePasses, Screen, mask_offset};
 use blueshift_sampling::Sampler;
@@ -74,6 +74,8 @@ pub struct RenderConfig {
     /// Nominal view size mapping onto the camera's field of view; `None` = (width, height).
     /// A wider image with the nominal size of the frames renders a whole pan at once.
     pub view_size: Option<(u32, u32)>,
+    /// Primary rays through pixel centres (no anti-aliasing jitter).
+    pub no_jitter: bool,
 }
 
 impl RenderConfig {
@@ -90,6 +92,7 @@ impl RenderConfig {
             sequence: 0,
             exposure: 1.0,
             view_size: None,
+            no_jitter: false,
         }
     }
 
@@ -308,6 +311,9 @@ impl Renderer {
         if m == Method::Sobol {
             flags |= TRACE_FLAG_ADVANCE_INDEX;
         }
+        if c.no_jitter {
+            flags |= TRACE_FLAG_NO_JITTER;
+        }
         let (mask_mode, mask_size, mask_frames, off) = match m {
             Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),
             Method::Stbn => (
@@ -426,6 +432,19 @@ impl Renderer {
     /// The current (padded) seed buffer.
     pub fn read_seeds(&self) -> Result<Vec<u32>> {
         Ok(self.seeds[self.current].read::<u32>()?[..self.screen.seed_count()].to_vec())
+    }
+    /// Replaces the seed buffer (e.g. a precomputed seed map). Must be a permutation of
+    /// [`Self::initial_seeds`] for the permutation invariants to hold; only the length is checked.
+    pub fn write_seeds(&mut self, seeds: &[u32]) -> Result<()> {
+        if seeds.len() != self.screen.seed_count() {
+            return Err(RenderError::Invalid(format!(
+                "seed map has {} seeds, the padded screen needs {}",
+                seeds.len(),
+                self.screen.seed_count()
+            )));
+        }
+        self.seeds[self.current].write(0, seeds)?;
+        Ok(())
     }
     pub fn initial_seeds(&self) -> &[u32] {
         &self.initial_seeds

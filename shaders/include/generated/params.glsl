@@ -57,6 +57,7 @@ const uint IMAGE_PARAMS_SIZE = 16;
 
 const uint TRACE_FLAG_SALT_FRAME = 1u;
 const uint TRACE_FLAG_ADVANCE_INDEX = 2u;
+const uint TRACE_FLAG_NO_JITTER = 4u;
 const uint MASK_MODE_NONE = 0u;
 const uint MASK_MODE_2D = 1u;
 const uint MASK_MODE_SPATIOTEMPORAL = 2u;

@@ -56,6 +56,15 @@ pub struct EvalArgs {
     pub assets: Option<PathBuf>,
     #[arg(long, default_value = "out/eval")]
     pub out: PathBuf,
+    /// Also write every raw frame and its reference as EXR under OUT/frames/ (for checking the
+    /// report's numbers independently).
+    #[arg(long)]
+    pub save_frames: bool,
+    /// Jitter primary rays inside the pixel (anti-aliasing). Off by default: the aliasing error
+    /// at the edges of visible emitters is orders of magnitude above the light-transport error
+    /// and no seed permutation can move it, so it would dominate every metric.
+    #[arg(long)]
+    pub jitter: bool,
 }
 
 fn list<T>(s: &str, what: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>> {
@@ -178,6 +187,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                 frames: args.frames,
                 path: camera,
                 cache: &cache,
+                no_jitter: !args.jitter,
             };
             let refs = references(&job)?;
             for &spp in &spps {
@@ -239,6 +249,7 @@ fn run_method(
             block: args.block,
             method,
             sequence: seq,
+            no_jitter: !args.jitter,
             ..RenderConfig::new(w, h)
         };
         let mut r = Renderer::new(dev, scene, assets, cfg)?;
@@ -253,6 +264,9 @@ fn run_method(
             }
             let est = r.read_estimate()?;
             let rf = refs.frame(t, w, h);
+            if args.save_frames && seq == 0 {
+                save_frame(args, config, method, t, &est, &rf.px)?;
+            }
             let e: Vec<f32> = est.iter().zip(&rf.px).map(|(a, b)| a[3] - b[3]).collect();
             let reference_y = Gray::new(w as usize, h as usize, rf.luminance())?;
             let masks = Masks::from_reference(&reference_y);
@@ -287,4 +301,30 @@ fn run_method(
         last_frame,
         last_error,
     })
+}
+
+/// Writes frame `t` of a run and its reference as linear EXR.
+fn save_frame(
+    args: &EvalArgs,
+    c: &Config,
+    m: Method,
+    t: u32,
+    est: &[[f32; 4]],
+    reference: &[[f32; 4]],
+) -> Result<()> {
+    use crate::output::{exr_rgb32f, write_atomic};
+    let dir = args
+        .out
+        .join("frames")
+        .join(format!("{}_{}", c.slug(), m.name()));
+    std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+    write_atomic(
+        &dir.join(format!("frame_{t:05}.exr")),
+        &exr_rgb32f(args.width, args.height, est)?,
+    )?;
+    write_atomic(
+        &dir.join(format!("reference_{t:05}.exr")),
+        &exr_rgb32f(args.width, args.height, reference)?,
+    )?;
+    Ok(())
 }

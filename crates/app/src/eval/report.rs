@@ -109,7 +109,7 @@ pub fn write(
         "settings": {
             "scene": a.scene, "width": a.width, "height": a.height, "frames": a.frames,
             "window": [a.frames / 2, a.frames - 1], "block": a.block,
-            "reference_spp": a.reference_spp, "sequences": a.sequences,
+            "reference_spp": a.reference_spp, "sequences": a.sequences, "jitter": a.jitter,
             "ema_alpha": super::metrics::EMA_ALPHA, "spectrum_tile": super::metrics::TILE,
             "edge_threshold": super::metrics::EDGE_THRESHOLD,
         },

@@ -1,0 +1,84 @@
+//! A tiny `blueshift eval` on lavapipe (validation on): the report's JSON parses, every
+//! configured run is present, and its numbers match a recomputation from the saved frames.
+use blueshift_analysis::{Boundary, Gray, blurred_rmse, rmse};
+use std::path::Path;
+use std::process::Command;
+
+fn lum(path: &Path) -> Gray {
+    Gray::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+#[test]
+fn tiny_eval_report_matches_recomputation_from_saved_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let status = Command::new(env!("CARGO_BIN_EXE_blueshift"))
+        .args([
+            "--validation",
+            "eval",
+            "--methods",
+            "white,sort-retarget",
+            "--spp",
+            "1",
+            "--camera",
+            "static",
+        ])
+        .args([
+            "--bounces",
+            "1",
+            "--frames",
+            "8",
+            "--width",
+            "64",
+            "--height",
+            "64",
+            "--reference-spp",
+            "64",
+        ])
+        .arg("--cache")
+        .arg(dir.path().join("cache"))
+        .arg("--out")
+        .arg(&out)
+        .arg("--save-frames")
+        .env("XDG_RUNTIME_DIR", dir.path())
+        .status()
+        .unwrap();
+    assert!(status.success(), "eval failed: {status}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert!(out.join("report.md").exists());
+    let runs = report["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 2);
+    for run in runs {
+        let method = run["method"].as_str().unwrap();
+        let frames = out.join("frames").join(format!("static_b1_spp1_{method}"));
+        // Metrics cover the second half of the frames (4..=7).
+        let (mut se, mut sp1) = (0.0, 0.0);
+        for t in 4..8 {
+            let est = lum(&frames.join(format!("frame_{t:05}.exr")));
+            let reference = lum(&frames.join(format!("reference_{t:05}.exr")));
+            let e = est.sub(&reference).unwrap();
+            se += rmse(&e).powi(2);
+            sp1 += blurred_rmse(&e, 1.0, Boundary::Clamp).unwrap().powi(2);
+        }
+        let (want_rmse, want_p1) = ((se / 4.0).sqrt(), (sp1 / 4.0).sqrt());
+        let got_rmse = run["raw"]["rmse"]["all"].as_f64().unwrap();
+        let got_p1 = run["raw"]["p1"]["all"].as_f64().unwrap();
+        // The report uses the shader's luminance, the recomputation Rec.709 luminance of the
+        // saved RGB: equal up to float rounding.
+        assert!(
+            (got_rmse - want_rmse).abs() <= 1e-4 * want_rmse,
+            "{method} RMSE {got_rmse} vs {want_rmse}"
+        );
+        assert!(
+            (got_p1 - want_p1).abs() <= 1e-4 * want_p1,
+            "{method} P1 {got_p1} vs {want_p1}"
+        );
+        assert!(want_rmse > 0.0);
+    }
+    let white_ratio = runs[0]["ratios_vs_white"]["p1"].as_f64().unwrap();
+    assert!(
+        (white_ratio - 1.0).abs() < 1e-12,
+        "white against itself: {white_ratio}"
+    );
+}
