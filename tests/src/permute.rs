@@ -54,6 +54,7 @@ fn estimate(lum: &[f32]) -> Vec<[f32; 4]> {
     lum.iter().map(|&l| [l, l, l, l]).collect()
 }
 
+#[allow(clippy::too_many_arguments)]
 fn gpu_frame(
     gpu: &mut Gpu,
     passes: &PermutePasses,

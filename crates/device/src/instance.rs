@@ -52,9 +52,8 @@ pub(crate) struct InstanceShared {
     pub entry: ash::Entry,
     pub raw: ash::Instance,
     pub debug_utils: Option<(ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
+    /// Also the debug callback's user data: it outlives the messenger (destroyed in Drop).
     pub log: Arc<ValidationLog>,
-    /// Keeps the callback's user-data pointer alive.
-    _log_box: Option<Box<Arc<ValidationLog>>>,
 }
 
 impl Drop for InstanceShared {
@@ -87,7 +86,8 @@ unsafe extern "system" fn debug_callback(
     data: *const vk::DebugUtilsMessengerCallbackDataEXT<'_>,
     user: *mut c_void,
 ) -> vk::Bool32 {
-    // SAFETY: the loader passes valid callback data; `user` is the boxed Arc kept by the instance.
+    // SAFETY: the loader passes valid callback data; `user` points at the ValidationLog that
+    // InstanceShared keeps alive until after the messenger is destroyed.
     unsafe {
         let msg = if data.is_null() || (*data).p_message.is_null() {
             "(no message)".to_string()
@@ -96,7 +96,7 @@ unsafe extern "system" fn debug_callback(
                 .to_string_lossy()
                 .into_owned()
         };
-        let log = &*(user as *const Arc<ValidationLog>);
+        let log = &*(user as *const ValidationLog);
         let level = if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR) {
             "error"
         } else {
@@ -141,10 +141,8 @@ impl Instance {
         // SAFETY: all pointers in `info` outlive the call.
         let raw = unsafe { entry.create_instance(&info, None) }.vk("vkCreateInstance")?;
         let log = Arc::new(ValidationLog::default());
-        let mut log_box = None;
         let mut debug_utils = None;
         if desc.validation {
-            let boxed = Box::new(log.clone());
             let du = ext::debug_utils::Instance::new(&entry, &raw);
             let info = vk::DebugUtilsMessengerCreateInfoEXT::default()
                 .message_severity(
@@ -157,12 +155,11 @@ impl Instance {
                         | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
                 )
                 .pfn_user_callback(Some(debug_callback))
-                .user_data(&*boxed as *const Arc<ValidationLog> as *mut c_void);
-            // SAFETY: the boxed log lives as long as the messenger (both in InstanceShared).
+                .user_data(Arc::as_ptr(&log) as *mut c_void);
+            // SAFETY: the log lives as long as the messenger (both in InstanceShared).
             let messenger = unsafe { du.create_debug_utils_messenger(&info, None) }
                 .vk("vkCreateDebugUtilsMessengerEXT")?;
             debug_utils = Some((du, messenger));
-            log_box = Some(boxed);
         }
         Ok(Self {
             shared: Arc::new(InstanceShared {
@@ -170,7 +167,6 @@ impl Instance {
                 raw,
                 debug_utils,
                 log,
-                _log_box: log_box,
             }),
         })
     }

@@ -13,7 +13,7 @@ pub const ALPHA: [u32; 2] = [3_242_174_889, 2_447_445_414];
 /// R2 sample `dim` of point `index` with a Cranley-Patterson offset from (seed, dim).
 #[inline]
 pub fn r2_bits(seed: u32, index: u32, dim: u32) -> u32 {
-    let offset = hash3(seed, dim, 0x52_32);
+    let offset = hash3(seed, dim, 0x5232);
     offset.wrapping_add(index.wrapping_mul(ALPHA[(dim & 1) as usize]))
 }
 

@@ -227,6 +227,34 @@ impl RunAccumulator {
     }
 }
 
+/// Running average of runs over sequences: `prev` already averages `n` sequences.
+pub fn average(prev: RunMetrics, next: RunMetrics, n: f64) -> RunMetrics {
+    let mix = |a: f64, b: f64| (a * n + b) / (n + 1.0);
+    let split = |a: Split, b: Split| Split {
+        all: mix(a.all, b.all),
+        smooth: mix(a.smooth, b.smooth),
+        edge: mix(a.edge, b.edge),
+    };
+    let stream = |a: StreamMetrics, b: StreamMetrics| StreamMetrics {
+        rmse: split(a.rmse, b.rmse),
+        p1: split(a.p1, b.p1),
+        p2: split(a.p2, b.p2),
+        lf: mix(a.lf, b.lf),
+    };
+    RunMetrics {
+        raw: stream(prev.raw, next.raw),
+        ema: stream(prev.ema, next.ema),
+        p1_per_frame: prev
+            .p1_per_frame
+            .iter()
+            .zip(&next.p1_per_frame)
+            .map(|(&a, &b)| mix(a, b))
+            .collect(),
+        spectrum: prev.spectrum,
+        radial: prev.radial,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -259,33 +287,5 @@ mod tests {
         ] {
             assert!((v - 0.5).abs() < 1e-6, "{v}");
         }
-    }
-}
-
-/// Running average of runs over sequences: `prev` already averages `n` sequences.
-pub fn average(prev: RunMetrics, next: RunMetrics, n: f64) -> RunMetrics {
-    let mix = |a: f64, b: f64| (a * n + b) / (n + 1.0);
-    let split = |a: Split, b: Split| Split {
-        all: mix(a.all, b.all),
-        smooth: mix(a.smooth, b.smooth),
-        edge: mix(a.edge, b.edge),
-    };
-    let stream = |a: StreamMetrics, b: StreamMetrics| StreamMetrics {
-        rmse: split(a.rmse, b.rmse),
-        p1: split(a.p1, b.p1),
-        p2: split(a.p2, b.p2),
-        lf: mix(a.lf, b.lf),
-    };
-    RunMetrics {
-        raw: stream(prev.raw, next.raw),
-        ema: stream(prev.ema, next.ema),
-        p1_per_frame: prev
-            .p1_per_frame
-            .iter()
-            .zip(&next.p1_per_frame)
-            .map(|(&a, &b)| mix(a, b))
-            .collect(),
-        spectrum: prev.spectrum,
-        radial: prev.radial,
     }
 }
