@@ -263,3 +263,45 @@ fn thousand_frames_stay_a_permutation() {
         }
     }
 }
+
+/// The committed 64x64 retarget table: GPU == CPU twin, every displacement within the radius
+/// it was made for, and a bijection on a padded odd-sized screen.
+#[test]
+fn committed_retarget_table_matches_cpu_and_keeps_radius() {
+    let mut gpu = Gpu::new();
+    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let dir = blueshift_render::default_assets_dir();
+    let t = blueshift_analysis::assets::load_retarget(&dir.join("retarget/bn64_s48_36_r6.bin"))
+        .unwrap();
+    let r2 = (t.radius * t.radius) as i32;
+    let table: Vec<[i32; 2]> = t
+        .offsets
+        .iter()
+        .map(|&(dx, dy)| [dx as i32, dy as i32])
+        .collect();
+    assert!(table.iter().all(|d| d[0] * d[0] + d[1] * d[1] <= r2));
+    let sc = Screen::new(100, 70, t.n as u32).unwrap();
+    let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
+    let tb = Buffer::from_slice(gpu.dev(), "permute.table", &table).unwrap();
+    let a = Buffer::from_slice(gpu.dev(), "permute.seeds_a", &init).unwrap();
+    let b = Buffer::new(
+        gpu.dev(),
+        "permute.seeds_b",
+        a.size,
+        MemoryLocation::GpuToCpu,
+    )
+    .unwrap();
+    for frame in [0u64, 1, 7] {
+        let off = mask_offset(frame, t.shift, t.n as u32);
+        let rec = gpu.rec.as_mut().unwrap();
+        rec.begin().unwrap();
+        rec.begin_pass("permute.retarget_seeds").unwrap();
+        passes
+            .retarget_seeds(rec, &sc.retarget_params(off), &tb, &a, &b)
+            .unwrap();
+        rec.submit_and_wait().unwrap();
+        let want = retarget_seeds_cpu(&sc.retarget_params(off), &table, &init);
+        assert_eq!(b.read::<u32>().unwrap()[..want.len()], want[..]);
+        assert!(is_permutation_of(&want, &init));
+    }
+}

@@ -67,7 +67,9 @@ impl PermutePasses {
         if !(2..=8).contains(&p.block) {
             return Err(PermuteError::BlockSize(p.block));
         }
-        let groups = [p.width.div_ceil(p.block), p.height.div_ceil(p.block), 1];
+        let blocks = p.width.div_ceil(p.block) * p.height.div_ceil(p.block);
+        let per_group = 64 / (p.block * p.block);
+        let groups = [blocks.div_ceil(per_group), 1, 1];
         rec.dispatch(
             &self.sort,
             &[estimate.into(), mask.into(), seeds.into()],

@@ -30,7 +30,7 @@ pub struct EvalArgs {
     #[arg(long, default_value = "1")]
     pub spp: String,
     /// Comma-separated camera paths: static, pan:PX, orbit:DEG, or keyframe files.
-    #[arg(long, default_value = "static,pan:1")]
+    #[arg(long, default_value = "static")]
     pub camera: String,
     /// Comma-separated bounce counts (1 = direct light only).
     #[arg(long, default_value = "1,8")]
