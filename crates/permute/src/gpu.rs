@@ -68,8 +68,7 @@ impl PermutePasses {
             return Err(PermuteError::BlockSize(p.block));
         }
         let blocks = p.width.div_ceil(p.block) * p.height.div_ceil(p.block);
-        let per_group = 64 / (p.block * p.block);
-        let groups = [blocks.div_ceil(per_group), 1, 1];
+        let groups = [blocks.div_ceil(64), 1, 1];
         rec.dispatch(
             &self.sort,
             &[estimate.into(), mask.into(), seeds.into()],
