@@ -82,6 +82,12 @@ pub fn jobs(root: &str) -> Vec<Job> {
             &["retarget/bn128_s97_73_r6.bin"],
             root,
         ),
+        job(
+            "scene --name all --out {root}/scenes",
+            0,
+            &["scenes/cornell-box.gltf", "scenes/textured.gltf", "scenes/edges.gltf"],
+            root,
+        ),
     ]
 }
 
