@@ -20,14 +20,7 @@ fn pipeline(
     bindings: &[Binding],
     push: usize,
 ) -> Result<ComputePipeline> {
-    let spirv = blueshift_shaders::require(name).map_err(PermuteError::Invalid)?;
-    Ok(ComputePipeline::new(
-        dev,
-        name,
-        &spirv,
-        bindings,
-        push as u32,
-    )?)
+    Ok(blueshift_shaders::pipeline(dev, name, bindings, push)?)
 }
 
 impl PermutePasses {

@@ -1,6 +1,6 @@
 //! The image passes: `trace/trace`, `trace/accumulate`, `trace/tonemap`.
 use crate::upload::SceneBuffers;
-use crate::{RenderError, Result};
+use crate::Result;
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder};
 use blueshift_layout::params::{ImageParams, TraceParams};
 
@@ -22,14 +22,7 @@ fn pipeline(
     bindings: &[Binding],
     push: usize,
 ) -> Result<ComputePipeline> {
-    let spirv = blueshift_shaders::require(name).map_err(RenderError::Invalid)?;
-    Ok(ComputePipeline::new(
-        dev,
-        name,
-        &spirv,
-        bindings,
-        push as u32,
-    )?)
+    Ok(blueshift_shaders::pipeline(dev, name, bindings, push)?)
 }
 
 const TRACE_BINDINGS: [Binding; 11] = [

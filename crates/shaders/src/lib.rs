@@ -25,3 +25,18 @@ pub fn require(name: &str) -> Result<Vec<u32>, String> {
         )
     })
 }
+
+/// The checked compute pipeline of shader `name` (bindings and push size are verified against
+/// its SPIR-V by [`blueshift_device::ComputePipeline::new`]).
+pub fn pipeline(
+    dev: &blueshift_device::Device,
+    name: &str,
+    bindings: &[blueshift_device::Binding],
+    push_size: usize,
+) -> Result<blueshift_device::ComputePipeline, blueshift_device::DeviceError> {
+    let spirv = require(name).map_err(|detail| blueshift_device::DeviceError::Shader {
+        shader: name.to_string(),
+        detail,
+    })?;
+    blueshift_device::ComputePipeline::new(dev, name, &spirv, bindings, push_size as u32)
+}
