@@ -6,9 +6,23 @@
 // Requirements of the INCLUDING shader, before `#include "bvh.glsl"`:
 //   #extension GL_EXT_scalar_block_layout : require
 //   #include "generated/scene.glsl"             // BvhNode, GpuTriangle, Ray, Hit, BVH_STACK_SIZE
+// and the two fetch functions (where the data lives is the includer's choice):
+//   void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
+//                      out uint count);         // the fields of BvhNode `index`
+//   GpuTriangle bvh_load_triangle(uint index);  // triangle `index` of the BVH leaf order
+// scene_texels.glsl defines them over the scene images (the trace shader); defining
+// BVH_FROM_BUFFERS before the include defines them over
 //   layout(scalar, set = S, binding = B) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 //   layout(scalar, set = S, binding = C) readonly buffer BvhTriangles { GpuTriangle bvh_triangles[]; };
-// (set and bindings are the including shader's choice; only the array names are fixed.)
+// (the test shader).
+//
+// Shaped for llvmpipe, where every `if` runs both sides under a lane mask and only loops exit
+// early (cost = instructions on all paths, times loop iterations of the slowest of the 8
+// lanes): the current node's fields stay in registers (an interior node costs one fetch of
+// its two children, which carries their fields; a leaf one fetch per triangle), and each
+// iteration of the traversal loop descends through interior nodes in an inner loop, tests
+// the leaf it reached right away, then pops. The nodes visited and triangles tested, and
+// their order, are exactly those of the Rust loop (one node per iteration there).
 //
 // API:
 //   bool bvh_closest_hit(Ray ray, out Hit hit)  closest t in [ray.tmin, ray.tmax]; on a miss
@@ -18,12 +32,28 @@
 #ifndef BVH_GLSL
 #define BVH_GLSL
 
+#ifdef BVH_FROM_BUFFERS
+void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
+                   out uint count) {
+    aabb_min = bvh_nodes[index].aabb_min;
+    left_first = bvh_nodes[index].left_first;
+    aabb_max = bvh_nodes[index].aabb_max;
+    count = bvh_nodes[index].count;
+}
+
+GpuTriangle bvh_load_triangle(uint index) { return bvh_triangles[index]; }
+#endif
+
 // Box exit distances, and the closest t they are compared with, are scaled by this so
 // rounding never culls a box holding a triangle at (or within rounding of) the closest hit
 // (Rust: BOX_TFAR_SCALE). Direction components below 1e-30 are replaced by +-1e-30 before
 // inverting (Rust: MIN_DIR_COMPONENT).
 const float BVH_TFAR_SCALE = 1.000002;
 const float BVH_MIN_DIR_COMPONENT = 1e-30;
+
+// Stack entries pack a node's (left_first, count): count < 8 (MAX_LEAF_SIZE is 4) and
+// left_first < 2^29 (the scene images hold fewer texels).
+const uint BVH_COUNT_BITS = 3u;
 
 float bvh_safe_component(float x) {
     if (abs(x) < BVH_MIN_DIR_COMPONENT) {
@@ -93,22 +123,49 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
     hit.u = 0.0;
     hit.v = 0.0;
     vec3 inv = bvh_safe_inverse(ray.dir);
+    vec3 bmin, bmax;
+    uint first, count;  // the current node
+    bvh_load_node(0u, bmin, bmax, first, count);
     float t_root;
-    if (!bvh_box_entry(bvh_nodes[0].aabb_min, bvh_nodes[0].aabb_max, ray.origin, inv, ray.tmin,
-                       hit.t, t_root)) {
+    if (!bvh_box_entry(bmin, bmax, ray.origin, inv, ray.tmin, hit.t, t_root)) {
         return false;
     }
     uint stack[BVH_STACK_SIZE];
     float stack_t[BVH_STACK_SIZE];
     uint sp = 0u;
-    uint node = 0u;
     while (true) {
-        BvhNode n = bvh_nodes[node];
-        bool descend = false;
-        if (n.count > 0u) {
-            for (uint i = n.left_first; i < n.left_first + n.count; ++i) {
+        // An interior node: step to the nearer child hit (pushing the farther one).
+        bool pop = false;
+        while (count == 0u && !pop) {
+            vec3 lmin, lmax, rmin, rmax;
+            uint lfirst, lcount, rfirst, rcount;
+            bvh_load_node(first, lmin, lmax, lfirst, lcount);
+            bvh_load_node(first + 1u, rmin, rmax, rfirst, rcount);
+            float tl, tr;
+            bool hl = bvh_box_entry(lmin, lmax, ray.origin, inv, ray.tmin, hit.t, tl);
+            bool hr = bvh_box_entry(rmin, rmax, ray.origin, inv, ray.tmin, hit.t, tr);
+            if (hl && hr) {
+                bool left_near = tl <= tr;
+                if (sp < BVH_STACK_SIZE) {
+                    stack[sp] = left_near ? (rfirst << BVH_COUNT_BITS) | rcount
+                                          : (lfirst << BVH_COUNT_BITS) | lcount;
+                    stack_t[sp] = left_near ? tr : tl;
+                    sp++;
+                }
+                first = left_near ? lfirst : rfirst;
+                count = left_near ? lcount : rcount;
+            } else if (hl || hr) {
+                first = hl ? lfirst : rfirst;
+                count = hl ? lcount : rcount;
+            } else {
+                pop = true;
+            }
+        }
+        // A leaf (possibly the child just reached, in the same iteration): its triangles.
+        if (count > 0u && !pop) {
+            for (uint i = first; i < first + count; ++i) {
                 float t, u, v;
-                if (bvh_intersect_triangle(ray, bvh_triangles[i], hit.t, t, u, v) &&
+                if (bvh_intersect_triangle(ray, bvh_load_triangle(i), hit.t, t, u, v) &&
                     (t < hit.t || i < hit.triangle)) {
                     hit.t = t;
                     hit.triangle = i;
@@ -116,46 +173,23 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
                     hit.v = v;
                 }
             }
-        } else {
-            uint l = n.left_first;
-            uint r = l + 1u;
-            float tl, tr;
-            bool hl = bvh_box_entry(bvh_nodes[l].aabb_min, bvh_nodes[l].aabb_max, ray.origin, inv,
-                                    ray.tmin, hit.t, tl);
-            bool hr = bvh_box_entry(bvh_nodes[r].aabb_min, bvh_nodes[r].aabb_max, ray.origin, inv,
-                                    ray.tmin, hit.t, tr);
-            if (hl && hr) {
-                bool left_near = tl <= tr;
-                if (sp < BVH_STACK_SIZE) {
-                    stack[sp] = left_near ? r : l;
-                    stack_t[sp] = left_near ? tr : tl;
-                    sp++;
+            pop = true;
+        }
+        if (pop) {
+            // Pop the next far child that can still hold a closer hit.
+            bool found = false;
+            while (sp > 0u) {
+                sp--;
+                if (stack_t[sp] <= hit.t * BVH_TFAR_SCALE) {
+                    first = stack[sp] >> BVH_COUNT_BITS;
+                    count = stack[sp] & ((1u << BVH_COUNT_BITS) - 1u);
+                    found = true;
+                    break;
                 }
-                node = left_near ? l : r;
-                descend = true;
-            } else if (hl) {
-                node = l;
-                descend = true;
-            } else if (hr) {
-                node = r;
-                descend = true;
             }
-        }
-        if (descend) {
-            continue;
-        }
-        // Pop the next far child that can still hold a closer hit.
-        bool found = false;
-        while (sp > 0u) {
-            sp--;
-            if (stack_t[sp] <= hit.t * BVH_TFAR_SCALE) {
-                node = stack[sp];
-                found = true;
+            if (!found) {
                 break;
             }
-        }
-        if (!found) {
-            break;
         }
     }
     return hit.triangle != HIT_MISS;
@@ -163,53 +197,56 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
 
 bool bvh_occluded(Ray ray) {
     vec3 inv = bvh_safe_inverse(ray.dir);
+    vec3 bmin, bmax;
+    uint first, count;
+    bvh_load_node(0u, bmin, bmax, first, count);
     float t_root;
-    if (!bvh_box_entry(bvh_nodes[0].aabb_min, bvh_nodes[0].aabb_max, ray.origin, inv, ray.tmin,
-                       ray.tmax, t_root)) {
+    if (!bvh_box_entry(bmin, bmax, ray.origin, inv, ray.tmin, ray.tmax, t_root)) {
         return false;
     }
     uint stack[BVH_STACK_SIZE];
     uint sp = 0u;
-    uint node = 0u;
+    bool occluded = false;
     while (true) {
-        BvhNode n = bvh_nodes[node];
-        if (n.count > 0u) {
-            for (uint i = n.left_first; i < n.left_first + n.count; ++i) {
-                float t, u, v;
-                if (bvh_intersect_triangle(ray, bvh_triangles[i], ray.tmax, t, u, v)) {
-                    return true;
-                }
-            }
-        } else {
-            uint l = n.left_first;
-            uint r = l + 1u;
+        bool pop = false;
+        while (count == 0u && !pop) {
+            vec3 lmin, lmax, rmin, rmax;
+            uint lfirst, lcount, rfirst, rcount;
+            bvh_load_node(first, lmin, lmax, lfirst, lcount);
+            bvh_load_node(first + 1u, rmin, rmax, rfirst, rcount);
             float tl, tr;
-            bool hl = bvh_box_entry(bvh_nodes[l].aabb_min, bvh_nodes[l].aabb_max, ray.origin, inv,
-                                    ray.tmin, ray.tmax, tl);
-            bool hr = bvh_box_entry(bvh_nodes[r].aabb_min, bvh_nodes[r].aabb_max, ray.origin, inv,
-                                    ray.tmin, ray.tmax, tr);
-            if (hl && hr) {
-                if (sp < BVH_STACK_SIZE) {
-                    stack[sp] = r;
-                    sp++;
-                }
-                node = l;
-                continue;
-            } else if (hl) {
-                node = l;
-                continue;
-            } else if (hr) {
-                node = r;
-                continue;
+            bool hl = bvh_box_entry(lmin, lmax, ray.origin, inv, ray.tmin, ray.tmax, tl);
+            bool hr = bvh_box_entry(rmin, rmax, ray.origin, inv, ray.tmin, ray.tmax, tr);
+            if (hl && hr && sp < BVH_STACK_SIZE) {
+                stack[sp] = (rfirst << BVH_COUNT_BITS) | rcount;
+                sp++;
             }
+            first = hl ? lfirst : rfirst;
+            count = hl ? lcount : rcount;
+            pop = !hl && !hr;
         }
-        if (sp == 0u) {
-            return false;
+        if (count > 0u && !pop) {
+            for (uint i = first; i < first + count; ++i) {
+                float t, u, v;
+                if (bvh_intersect_triangle(ray, bvh_load_triangle(i), ray.tmax, t, u, v)) {
+                    occluded = true;
+                }
+            }
+            pop = true;
         }
-        sp--;
-        node = stack[sp];
+        if (occluded) {
+            break;
+        }
+        if (pop) {
+            if (sp == 0u) {
+                break;
+            }
+            sp--;
+            first = stack[sp] >> BVH_COUNT_BITS;
+            count = stack[sp] & ((1u << BVH_COUNT_BITS) - 1u);
+        }
     }
-    return false;
+    return occluded;
 }
 
 #endif

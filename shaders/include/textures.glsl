@@ -1,5 +1,5 @@
-// Texture sampling from the packed RGBA8 texel buffer (no sampler arrays on lavapipe).
-// Requires the including shader to declare `textures[]` (GpuTexture) and `texels[]` (uint).
+// Texture sampling from the packed RGBA8 atlas in the scene texels (no sampler arrays on
+// lavapipe). Requires scene_texels.glsl (scene_texture, scene_atlas_word).
 #ifndef TEXTURES_GLSL
 #define TEXTURES_GLSL
 
@@ -15,17 +15,18 @@ int wrap_coord(int i, int n, uint mode) {
 vec4 texel(GpuTexture t, int x, int y) {
     uint sx = wrap_coord(x, int(t.width), (t.flags >> TEXTURE_WRAP_S_SHIFT) & 3u);
     uint sy = wrap_coord(y, int(t.height), (t.flags >> TEXTURE_WRAP_T_SHIFT) & 3u);
-    return unpackUnorm4x8(texels[t.offset + sy * t.width + sx]);
+    return unpackUnorm4x8(scene_atlas_word(t.offset + sy * t.width + sx));
 }
 
 // Bilinear (or nearest) lookup at glTF uv; raw texel values (no colour-space conversion).
 vec4 texture_raw(int index, vec2 uv) {
-    GpuTexture t = textures[index];
+    GpuTexture t = scene_texture(index);
     vec2 p = uv * vec2(t.width, t.height) - 0.5;
-    if ((t.flags & TEXTURE_FILTER_NEAREST) != 0u) {
-        return texel(t, int(floor(p.x + 0.5)), int(floor(p.y + 0.5)));
-    }
-    vec2 f = p - floor(p);
+    // Nearest = the bilinear code at the rounded texel with weight 0 (one code path: on
+    // llvmpipe both sides of an `if` run anyway).
+    bool nearest = (t.flags & TEXTURE_FILTER_NEAREST) != 0u;
+    vec2 f = nearest ? vec2(0.0) : p - floor(p);
+    p = nearest ? p + 0.5 : p;
     int x = int(floor(p.x)), y = int(floor(p.y));
     return mix(mix(texel(t, x, y), texel(t, x + 1, y), f.x),
                mix(texel(t, x, y + 1), texel(t, x + 1, y + 1), f.x), f.y);

@@ -22,6 +22,7 @@ layout(push_constant) uniform Push {
     uint ray_count;
 } pc;
 
+#define BVH_FROM_BUFFERS
 #include "bvh.glsl"
 
 void main() {

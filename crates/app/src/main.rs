@@ -1,9 +1,12 @@
 //! `blueshift`: the command-line entry point.
 mod bench;
 mod eval;
+mod fail;
 mod info;
 mod output;
 mod render;
+mod soak;
+mod view;
 
 use clap::{Parser, Subcommand};
 
@@ -31,23 +34,28 @@ enum Command {
     Eval(eval::EvalArgs),
     /// Throughput of the path tracer (Msamples/s, Mrays/s) from GPU timestamps.
     Bench(bench::BenchArgs),
+    /// Long run of the frame loop checking the seed permutation and flat host/device memory.
+    Soak(soak::SoakArgs),
+    /// Desktop demo: a window with a fly camera, method switching and split-screen.
+    View(view::ViewArgs),
 }
 
+/// Exit codes: 0 success, 1 any error (one `error: ...` line, usage errors included),
+/// 2 internal error (a panic: a bug, never a reaction to bad input).
 fn main() -> std::process::ExitCode {
-    let cli = Cli::parse();
-    let result = match &cli.command {
+    fail::install_panic_hook();
+    let cli: Cli = match fail::parse() {
+        Ok(cli) => cli,
+        Err(code) => return code,
+    };
+    fail::run(|| match &cli.command {
         Command::Info(args) => info::run(&cli_gpu(&cli), args),
         Command::Render(args) => render::run(&cli_gpu(&cli), args),
         Command::Eval(args) => eval::run(&cli_gpu(&cli), args),
         Command::Bench(args) => bench::run(&cli_gpu(&cli), args),
-    };
-    match result {
-        Ok(()) => std::process::ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            std::process::ExitCode::FAILURE
-        }
-    }
+        Command::Soak(args) => soak::run(&cli_gpu(&cli), args),
+        Command::View(args) => view::run(&cli_gpu(&cli), args),
+    })
 }
 
 /// Device options shared by every subcommand.

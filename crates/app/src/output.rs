@@ -2,7 +2,7 @@
 //! failed or interrupted run never leaves a half-written file under the final name.
 use anyhow::{Context, Result};
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Writes `bytes` to `path` atomically.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
@@ -44,15 +44,33 @@ pub fn exr_rgb32f(width: u32, height: u32, rgba: &[[f32; 4]]) -> Result<Vec<u8>>
     Ok(out.into_inner())
 }
 
+/// An output directory from [`prepare_dir`]. If this run created it and it is still empty when
+/// dropped (the run failed before writing anything), it is removed again.
+#[must_use = "dropping the guard removes the directory it created while it is empty"]
+#[derive(Debug)]
+pub struct OutputDir {
+    created: Option<PathBuf>,
+}
+
+impl Drop for OutputDir {
+    fn drop(&mut self) {
+        if let Some(dir) = &self.created {
+            let _ = std::fs::remove_dir(dir); // fails, as it should, unless empty
+        }
+    }
+}
+
 /// Creates `dir` (and parents) and checks it is writable, naming it on failure.
-pub fn prepare_dir(dir: &Path) -> Result<()> {
+pub fn prepare_dir(dir: &Path) -> Result<OutputDir> {
+    let created = (!dir.exists()).then(|| dir.to_path_buf());
     std::fs::create_dir_all(dir)
         .with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    let guard = OutputDir { created };
     let probe = dir.join(format!(".blueshift-write-test.{}", std::process::id()));
     std::fs::write(&probe, b"")
         .with_context(|| format!("output directory {} is not writable", dir.display()))?;
     let _ = std::fs::remove_file(probe);
-    Ok(())
+    Ok(guard)
 }
 
 #[cfg(test)]

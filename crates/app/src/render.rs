@@ -76,8 +76,14 @@ pub fn load_scene(spec: &str) -> Result<Scene> {
         quiet: true,
         ..Default::default()
     };
-    let scene = Scene::load_with(&path, &opts)
-        .with_context(|| format!("loading scene {}", path.display()))?;
+    let looks_like_preset = !spec.contains(['/', '.']);
+    let scene = match Scene::load_with(&path, &opts) {
+        Err(blueshift_scene::SceneError::NotFound { .. }) if looks_like_preset => bail!(
+            "scene '{spec}' is neither a file nor a preset (presets: cornell-box, textured, edges)"
+        ),
+        // The scene error names the file.
+        r => r?,
+    };
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }
@@ -117,9 +123,10 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     let path = CameraPath::parse(&args.camera_path).map_err(anyhow::Error::msg)?;
     let scene = load_scene(&args.scene.scene)?;
     let assets = load_assets(&args.scene)?;
-    prepare_dir(&args.out)?;
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
+    // Only now that every input is known to be good: a failed run leaves no output directory.
+    let _out = prepare_dir(&args.out)?;
     let base = scene.camera_or_default();
     let bar = ProgressBar::new(args.frames as u64);
     bar.set_style(

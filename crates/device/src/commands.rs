@@ -37,7 +37,7 @@ const MAX_PASSES: u32 = 64;
 
 /// One reusable command buffer with its fence, timestamp pool and crash-marker buffer.
 pub struct Recorder {
-    dev: Device,
+    pub(crate) dev: Device,
     pool: vk::CommandPool,
     pub cmd: vk::CommandBuffer,
     fence: vk::Fence,
@@ -46,6 +46,11 @@ pub struct Recorder {
     passes: Vec<String>,
     open_pass: Option<usize>,
     recording: bool,
+    /// Testing hook (`BLUESHIFT_TEST_DEVICE_LOST=PASS`): a submission containing pass PASS
+    /// reports a lost device, as if the GPU hung in PASS (markers stop after it).
+    lose_in_pass: Option<String>,
+    /// The hook's pass was recorded in this submission; later passes write no marker.
+    markers_frozen: bool,
 }
 
 impl std::fmt::Debug for Recorder {
@@ -108,6 +113,10 @@ impl Recorder {
                 passes: Vec::new(),
                 open_pass: None,
                 recording: false,
+                lose_in_pass: std::env::var("BLUESHIFT_TEST_DEVICE_LOST")
+                    .ok()
+                    .filter(|p| !p.is_empty()),
+                markers_frozen: false,
             })
         }
     }
@@ -130,10 +139,11 @@ impl Recorder {
         self.passes.clear();
         self.open_pass = None;
         self.recording = true;
+        self.markers_frozen = false;
         Ok(())
     }
 
-    fn check_recording(&self) -> Result<()> {
+    pub(crate) fn check_recording(&self) -> Result<()> {
         if self.recording {
             Ok(())
         } else {
@@ -155,10 +165,14 @@ impl Recorder {
         }
         self.passes.push(name.to_string());
         self.open_pass = Some(i as usize);
+        let write_marker = !self.markers_frozen;
+        self.markers_frozen |= self.lose_in_pass.as_deref() == Some(name);
         let d = self.dev.raw();
         // SAFETY: recording; the marker buffer is TRANSFER_DST.
         unsafe {
-            d.cmd_fill_buffer(self.cmd, self.markers.raw, 0, 4, i + 1);
+            if write_marker {
+                d.cmd_fill_buffer(self.cmd, self.markers.raw, 0, 4, i + 1);
+            }
             d.cmd_write_timestamp(
                 self.cmd,
                 vk::PipelineStageFlags::BOTTOM_OF_PIPE,
@@ -394,6 +408,16 @@ impl Recorder {
 
     /// Ends recording, submits, waits, and returns the per-pass times.
     pub fn submit_and_wait(&mut self) -> Result<Vec<PassTime>> {
+        self.submit_and_wait_with(&[], &[])
+    }
+
+    /// Like [`Self::submit_and_wait`], waiting for the `wait` semaphores (each at its stage)
+    /// and signalling `signal` (a swapchain image's acquire and render-finished semaphores).
+    pub fn submit_and_wait_with(
+        &mut self,
+        wait: &[(vk::Semaphore, vk::PipelineStageFlags)],
+        signal: &[vk::Semaphore],
+    ) -> Result<Vec<PassTime>> {
         self.check_recording()?;
         if self.open_pass.is_some() {
             self.end_pass()?;
@@ -401,7 +425,12 @@ impl Recorder {
         self.recording = false;
         let d = self.dev.raw();
         let cmds = [self.cmd];
-        let submit = vk::SubmitInfo::default().command_buffers(&cmds);
+        let (wait_sems, wait_stages): (Vec<_>, Vec<_>) = wait.iter().copied().unzip();
+        let submit = vk::SubmitInfo::default()
+            .command_buffers(&cmds)
+            .wait_semaphores(&wait_sems)
+            .wait_dst_stage_mask(&wait_stages)
+            .signal_semaphores(signal);
         // SAFETY: the command buffer is complete; the fence is unsignalled.
         let run = unsafe {
             d.end_command_buffer(self.cmd)
@@ -416,10 +445,28 @@ impl Recorder {
                 })
                 .and_then(|_| d.reset_fences(&[self.fence]).vk("vkResetFences"))
         };
-        if let Err(DeviceError::Vulkan { what, result }) = &run
-            && *result == vk::Result::ERROR_DEVICE_LOST
-        {
-            return Err(self.device_lost(what));
+        match &run {
+            Err(DeviceError::Vulkan { what, result })
+                if *result == vk::Result::ERROR_DEVICE_LOST =>
+            {
+                return Err(self.device_lost(what));
+            }
+            Err(DeviceError::Vulkan { what, result })
+                if matches!(
+                    *result,
+                    vk::Result::ERROR_OUT_OF_DEVICE_MEMORY | vk::Result::ERROR_OUT_OF_HOST_MEMORY
+                ) =>
+            {
+                return Err(DeviceError::SubmitOutOfMemory {
+                    passes: self.passes.join(", "),
+                    what: what.clone(),
+                    result: *result,
+                });
+            }
+            Ok(()) if self.markers_frozen => {
+                return Err(self.device_lost("simulated by BLUESHIFT_TEST_DEVICE_LOST"));
+            }
+            _ => {}
         }
         run?;
         self.timings()

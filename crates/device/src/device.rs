@@ -169,6 +169,9 @@ impl Device {
     ) -> Result<Self> {
         let raw_inst = instance.raw();
         let mut info = query_info(instance, pd);
+        if let Some(limit) = env_limit("BLUESHIFT_MAX_STORAGE_BUFFER_RANGE")? {
+            info.max_storage_buffer_range = info.max_storage_buffer_range.min(limit);
+        }
         // SAFETY: plain query on a handle from the enumeration.
         let families = unsafe { raw_inst.get_physical_device_queue_family_properties(pd) };
         info.timestamp_valid_bits = families
@@ -301,6 +304,19 @@ impl Device {
     pub fn wait_idle(&self) -> Result<()> {
         // SAFETY: the device is alive.
         unsafe { self.shared.raw.device_wait_idle() }.vk("vkDeviceWaitIdle")
+    }
+}
+
+/// A testing hook: an environment variable that lowers a device limit (so over-limit paths can
+/// be tested without huge inputs). Unset = no change.
+fn env_limit(var: &str) -> Result<Option<u64>> {
+    match std::env::var(var) {
+        Err(_) => Ok(None),
+        Ok(v) => v
+            .trim()
+            .parse::<u64>()
+            .map(Some)
+            .map_err(|_| DeviceError::Usage(format!("{var}='{v}' is not a number of bytes"))),
     }
 }
 

@@ -9,7 +9,7 @@ pub enum DeviceError {
     )]
     Loader(String),
     #[error(
-        "no Vulkan device with a compute queue was found. For a CPU device install Mesa lavapipe: `apt-get install mesa-vulkan-drivers`"
+        "no Vulkan device with a compute queue was found (if VK_DRIVER_FILES or VK_ICD_FILENAMES is set, check it names an installed driver). For a CPU device install Mesa lavapipe: `apt-get install mesa-vulkan-drivers`"
     )]
     NoDevice,
     #[error("device index {index} is out of range: {count} Vulkan device(s) found ({names})")]
@@ -33,6 +33,13 @@ pub enum DeviceError {
         name: String,
         bytes: u64,
         detail: String,
+    },
+    /// Out of memory while submitting or running a submission; names its passes.
+    #[error("out of memory while running pass(es) {passes} ({what}: {result})")]
+    SubmitOutOfMemory {
+        passes: String,
+        what: String,
+        result: vk::Result,
     },
     #[error("allocation '{name}' failed: {detail}")]
     Allocation { name: String, detail: String },

@@ -139,7 +139,11 @@ impl Instance {
             .enabled_layer_names(&layers)
             .enabled_extension_names(&exts);
         // SAFETY: all pointers in `info` outlive the call.
-        let raw = unsafe { entry.create_instance(&info, None) }.vk("vkCreateInstance")?;
+        let raw = match unsafe { entry.create_instance(&info, None) } {
+            // The loader found no driver (no ICD manifest, or none that loads).
+            Err(vk::Result::ERROR_INCOMPATIBLE_DRIVER) => return Err(DeviceError::NoDevice),
+            r => r.vk("vkCreateInstance")?,
+        };
         let log = Arc::new(ValidationLog::default());
         let mut debug_utils = None;
         if desc.validation {

@@ -1,7 +1,8 @@
 //! Raw Vulkan over ash for Blueshift: instance (validation on request, messages counted), device
 //! choice that works headless and with a surface, named gpu-allocator buffers and images,
 //! compute pipelines whose bindings are checked against the SPIR-V, command recording with
-//! per-pass timestamps and crash markers. It knows nothing of scenes or passes.
+//! per-pass timestamps and crash markers, and a swapchain for windowed presentation. It knows
+//! nothing of scenes or passes.
 //!
 //! ```no_run
 //! use blueshift_device::{Device, DeviceDesc, Instance, InstanceDesc};
@@ -16,7 +17,9 @@ mod error;
 mod instance;
 mod memory;
 mod pipeline;
+mod present;
 mod surface;
+mod swapchain;
 
 pub use ash::{self, vk};
 pub use commands::{PassTime, Recorder, Res};
@@ -29,6 +32,10 @@ pub use pipeline::{
     Binding, BindingKind, ComputePipeline, ShaderInterface, check_bindings, reflect,
 };
 pub use surface::Surface;
+pub use swapchain::{
+    PRESENTABLE_FORMATS, SwapImage, Swapchain, choose_extent, choose_format, choose_image_count,
+    choose_present_mode, is_bgra,
+};
 
 /// Creates an instance and device in one call (the common headless case).
 pub fn headless(validation: bool, device_index: Option<usize>) -> Result<Device> {

@@ -26,6 +26,16 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("DIMS_PER_BOUNCE", params::DIMS_PER_BOUNCE)
                 .render("params"),
         ),
+        (
+            "view",
+            Header::new()
+                .push::<params::PresentParams>()
+                .constant("PRESENT_FLAG_SPLIT", params::PRESENT_FLAG_SPLIT)
+                .constant("PRESENT_FLAG_ERROR", params::PRESENT_FLAG_ERROR)
+                .constant("PRESENT_FLAG_BGRA", params::PRESENT_FLAG_BGRA)
+                .constant("PRESENT_DIVIDER_WIDTH", params::PRESENT_DIVIDER_WIDTH)
+                .render("view"),
+        ),
     ]
 }
 

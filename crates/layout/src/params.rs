@@ -34,7 +34,7 @@ gpu_struct! {
 }
 
 gpu_struct! {
-    /// Push constants of `trace/trace` (120 bytes: fits the 128-byte minimum limit).
+    /// Push constants of `trace/trace` (124 bytes: fits the 128-byte minimum limit).
     pub struct TraceParams {
         pub cam_origin: glam::Vec3,
         pub cam_forward: glam::Vec3,
@@ -47,10 +47,15 @@ gpu_struct! {
         pub stride: u32,
         pub frame: u32,
         pub spp: u32,
-        /// The sample of this dispatch (0..spp): one dispatch per sample keeps every invocation
-        /// far below llvmpipe's limit of 65535 loop iterations per shader invocation (shared by
-        /// all loops; past it loops silently exit), which many samples in one dispatch exceed.
+        /// The first sample of this dispatch (0..spp). A frame takes several dispatches of
+        /// `sample_count` samples each, so that every invocation stays far below llvmpipe's
+        /// limit of 65535 loop iterations per shader invocation (shared by all loops; past it
+        /// loops silently exit), which many samples in one dispatch exceed.
         pub sample_index: u32,
+        /// Samples of this dispatch (`sample_index .. sample_index + sample_count`): at most
+        /// a bounded number of path vertices per invocation (at least one sample; the
+        /// renderer's `trace` pass chooses).
+        pub sample_count: u32,
         /// Maximum path vertices after the camera (1 = direct light only).
         pub max_bounces: u32,
         /// `SAMPLER_*` constant of sampling.glsl.
@@ -101,3 +106,31 @@ gpu_struct! {
         pub exposure: f32,
     }
 }
+
+gpu_struct! {
+    /// Push constants of `view/present`: composes the renderers' outputs into the window's
+    /// packed 8-bit pixels (one invocation per window pixel).
+    pub struct PresentParams {
+        /// Window (swapchain) size in pixels.
+        pub out_width: u32,
+        pub out_height: u32,
+        /// Render size of every source (nearest upscaling to the window).
+        pub src_width: u32,
+        pub src_height: u32,
+        /// Window column where the right-hand source starts (split-screen only).
+        pub split_x: u32,
+        /// `PRESENT_FLAG_*` bits.
+        pub flags: u32,
+        /// Error view: |accum - reference| * error_scale, then the sRGB curve.
+        pub error_scale: f32,
+    }
+}
+
+/// `PresentParams::flags`: left half from source A, right half from source B, with a divider.
+pub const PRESENT_FLAG_SPLIT: u32 = 1;
+/// `PresentParams::flags`: show the scaled absolute error against the reference instead.
+pub const PRESENT_FLAG_ERROR: u32 = 2;
+/// `PresentParams::flags`: the window's bytes are B, G, R, A (else R, G, B, A).
+pub const PRESENT_FLAG_BGRA: u32 = 4;
+/// Divider width in window pixels (split-screen).
+pub const PRESENT_DIVIDER_WIDTH: u32 = 2;

@@ -27,8 +27,9 @@ pub fn default_assets_dir() -> PathBuf {
         .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets"))
 }
 
-fn asset_err(path: &Path, e: impl std::fmt::Display) -> RenderError {
-    RenderError::Asset(format!("{}: {e}", path.display()))
+/// The loaders' errors already name the file.
+fn asset_err(_path: &Path, e: impl std::fmt::Display) -> RenderError {
+    RenderError::Asset(e.to_string())
 }
 
 impl MethodAssets {

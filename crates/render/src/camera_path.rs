@@ -74,26 +74,30 @@ impl CameraPath {
                 path.display()
             )
         })?;
-        let file: PathFile = serde_json::from_str(&text)
-            .map_err(|e| format!("camera path '{}': {e}", path.display()))?;
+        Self::from_json(&text, &path.display().to_string())
+    }
+
+    /// Parses and validates keyframe JSON (module docs); `name` only labels errors.
+    pub fn from_json(text: &str, name: &str) -> Result<CameraPath, String> {
+        let file: PathFile =
+            serde_json::from_str(text).map_err(|e| format!("camera path '{name}': {e}"))?;
         let k = &file.keyframes;
         if k.is_empty() {
-            return Err(format!("camera path '{}': no keyframes", path.display()));
+            return Err(format!("camera path '{name}': no keyframes"));
         }
         for w in k.windows(2) {
             if w[1].frame <= w[0].frame {
                 return Err(format!(
-                    "camera path '{}': keyframe frames must increase",
-                    path.display()
+                    "camera path '{name}': keyframe frames must increase"
                 ));
             }
         }
         for kf in k {
-            let finite = kf.position.iter().chain(&kf.target).all(|v| v.is_finite());
-            if !finite || !(0.1..179.0).contains(&kf.yfov_degrees) {
+            let p = Vec3::from(kf.position);
+            let t = Vec3::from(kf.target);
+            if !p.is_finite() || !t.is_finite() || !(0.1..179.0).contains(&kf.yfov_degrees) {
                 return Err(format!(
-                    "camera path '{}': keyframe at frame {} has a non-finite position/target or a fov outside 0.1..179 degrees",
-                    path.display(),
+                    "camera path '{name}': keyframe at frame {} has a non-finite position/target or a fov outside 0.1..179 degrees",
                     kf.frame
                 ));
             }
@@ -155,9 +159,11 @@ fn interpolate(k: &[Keyframe], frame: u32) -> Camera {
     let (a, b) = (&k[next - 1], &k[next]);
     let t = (frame - a.frame) as f32 / (b.frame - a.frame) as f32;
     let (ca, cb) = (at(a), at(b));
+    // a * (1 - t) + b * t, not glam's a + (b - a) * t: b - a overflows for large coordinates.
+    let lerp = |a: Vec3, b: Vec3| a * (1.0 - t) + b * t;
     Camera {
-        position: ca.position.lerp(cb.position, t),
-        target: ca.target.lerp(cb.target, t),
+        position: lerp(ca.position, cb.position),
+        target: lerp(ca.target, cb.target),
         up: Vec3::Y,
         yfov: ca.yfov + (cb.yfov - ca.yfov) * t,
     }
@@ -189,6 +195,19 @@ mod tests {
                 .unwrap_err()
                 .contains("presets")
         );
+    }
+
+    #[test]
+    fn keyframes_far_apart_interpolate_to_finite_cameras() {
+        let text = r#"{"keyframes": [
+            {"frame": 0, "position": [-3e38, 0, 0], "target": [0, 0, 0], "yfov_degrees": 40},
+            {"frame": 9, "position": [3e38, 0, 0], "target": [0, 0, 1], "yfov_degrees": 40}]}"#;
+        let path = CameraPath::from_json(text, "far").unwrap();
+        for f in 0..10 {
+            assert!(path.camera(&base(), f).position.is_finite(), "frame {f}");
+        }
+        assert!(CameraPath::from_json(r#"{"keyframes": []}"#, "x").is_err());
+        assert!(CameraPath::from_json("{", "x").unwrap_err().contains("'x'"));
     }
 
     #[test]

@@ -16,13 +16,16 @@
 //! ```
 mod assets;
 mod camera_path;
+mod images;
 mod method;
 mod passes;
 mod upload;
 
 pub use assets::{MethodAssets, default_assets_dir};
 pub use camera_path::{CameraPath, Keyframe};
+pub use images::SceneImages;
 pub use method::Method;
+pub use passes::{TRACE_BINDINGS, TraceVariant};
 pub use upload::SceneBuffers;
 
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
@@ -159,6 +162,7 @@ pub struct Renderer {
     cfg: RenderConfig,
     screen: Screen,
     scene: SceneBuffers,
+    images: SceneImages,
     image: ImagePasses,
     permute: PermutePasses,
     rec: Recorder,
@@ -204,6 +208,8 @@ impl Renderer {
         cfg.validate(dev)?;
         let gpu_scene = SceneGpu::build(scene);
         let scene_buffers = SceneBuffers::new(dev, &gpu_scene)?;
+        let image_passes = ImagePasses::new(dev)?;
+        let scene_images = SceneImages::new(dev, &image_passes, &gpu_scene)?;
         let screen = Screen::new(cfg.width, cfg.height, assets.n)?;
         let initial = initial_seeds(screen.seed_count(), cfg.sequence);
         let pixels = cfg.width as u64 * cfg.height as u64;
@@ -216,7 +222,8 @@ impl Renderer {
             dev: dev.clone(),
             screen,
             scene: scene_buffers,
-            image: ImagePasses::new(dev)?,
+            images: scene_images,
+            image: image_passes,
             permute: PermutePasses::new(dev)?,
             rec: Recorder::new(dev, "frame")?,
             seeds,
@@ -335,6 +342,7 @@ impl Renderer {
             frame: self.frame as u32,
             spp: c.spp,
             sample_index: 0,
+            sample_count: 1,
             max_bounces: c.bounces,
             sampler_kind: c.sampler.unwrap_or(m.default_sampler()) as u32,
             flags,
@@ -371,6 +379,7 @@ impl Renderer {
             &mut self.rec,
             &tp,
             &self.scene,
+            &self.images,
             &self.seeds[cur],
             mask,
             &self.estimate,
@@ -414,6 +423,22 @@ impl Renderer {
         self.frame += 1;
         self.accumulated = self.accumulated.saturating_add(1);
         Ok(stats)
+    }
+
+    /// Starts the running mean afresh with the next frame (seeds and frame index are kept):
+    /// with this before every frame, the output shows single frames.
+    pub fn restart_accumulation(&mut self) {
+        self.accumulated = 0;
+    }
+
+    /// The device buffer of the tonemapped output (packed RGBA8 per pixel, row-major), for
+    /// passes that read it after [`Self::render_frame`] returned.
+    pub fn ldr_buffer(&self) -> &Buffer {
+        &self.ldr
+    }
+    /// The device buffer of the running mean (`[f32; 4]` per pixel, row-major).
+    pub fn accum_buffer(&self) -> &Buffer {
+        &self.accum
     }
 
     /// The raw estimate of the last frame: (r, g, b, luminance) per pixel, row-major.

@@ -1,13 +1,83 @@
-//! The image passes: `trace/trace`, `trace/accumulate`, `trace/tonemap`.
+//! The image passes: the path tracer (`trace/variants/*`), `trace/accumulate`,
+//! `trace/tonemap`, and `trace/upload_texels` (scene images, once per scene).
+use crate::images::SceneImages;
 use crate::upload::SceneBuffers;
-use crate::Result;
-use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder};
-use blueshift_layout::params::{ImageParams, TraceParams};
+use crate::{RenderError, Result};
+use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Image, Recorder};
+use blueshift_layout::params::{ImageParams, MASK_MODE_NONE, TraceParams};
+use blueshift_sampling::Sampler;
 
 pub struct ImagePasses {
-    trace: ComputePipeline,
+    dev: Device,
+    /// Path-tracer variants created so far, by [`TraceVariant::shader`] name.
+    trace: Vec<(&'static str, ComputePipeline)>,
     accumulate: ComputePipeline,
     tonemap: ComputePipeline,
+    upload: ComputePipeline,
+}
+
+/// Path vertices (samples x (bounces + 1)) one trace dispatch may run per invocation. The
+/// samples of a dispatch run in one loop over path vertices (a lane whose path ends starts
+/// its next sample, so the 8 SIMD lanes stay busy), and all their loop iterations count
+/// against llvmpipe's limit of 65535 per invocation, past which loops silently exit. A path
+/// vertex costs about 30 loop iterations in the bundled scenes, a few hundred at worst in
+/// large meshes, so 64 vertices stay well below the limit.
+pub const TRACE_MAX_PATH_VERTICES: u32 = 64;
+
+/// Samples per trace dispatch for paths of up to `bounces + 1` vertices (at least one).
+pub fn samples_per_dispatch(bounces: u32) -> u32 {
+    (TRACE_MAX_PATH_VERTICES / (bounces + 1)).max(1)
+}
+
+/// Which path-tracer pipeline a frame needs. llvmpipe executes both sides of every branch,
+/// so each variant compiles out what the method and scene never use (trace_body.glsl); all
+/// variants share one binding table and push-constant block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TraceVariant {
+    pub sampler: Sampler,
+    /// Blue-noise mask modes (`TraceParams::mask_mode != MASK_MODE_NONE`).
+    pub mask: bool,
+    /// Material textures (any material has one).
+    pub textures: bool,
+}
+
+impl TraceVariant {
+    /// The variant for these push constants over these scene images.
+    pub fn of(p: &TraceParams, scene: &SceneImages) -> Result<Self> {
+        let sampler = [Sampler::White, Sampler::Sobol, Sampler::R2]
+            .into_iter()
+            .find(|&s| s as u32 == p.sampler_kind)
+            .ok_or_else(|| RenderError::Invalid(format!("sampler kind {}", p.sampler_kind)))?;
+        Ok(Self {
+            sampler,
+            mask: p.mask_mode != MASK_MODE_NONE,
+            textures: scene.textured,
+        })
+    }
+
+    /// The shader name, `trace/variants/<sampler>[_mask][_tex]`.
+    pub fn shader(self) -> &'static str {
+        const NAMES: [&str; 12] = [
+            "trace/variants/white",
+            "trace/variants/white_tex",
+            "trace/variants/white_mask",
+            "trace/variants/white_mask_tex",
+            "trace/variants/sobol",
+            "trace/variants/sobol_tex",
+            "trace/variants/sobol_mask",
+            "trace/variants/sobol_mask_tex",
+            "trace/variants/r2",
+            "trace/variants/r2_tex",
+            "trace/variants/r2_mask",
+            "trace/variants/r2_mask_tex",
+        ];
+        let s = match self.sampler {
+            Sampler::White => 0,
+            Sampler::Sobol => 1,
+            Sampler::R2 => 2,
+        };
+        NAMES[s * 4 + usize::from(self.mask) * 2 + usize::from(self.textures)]
+    }
 }
 
 impl std::fmt::Debug for ImagePasses {
@@ -25,14 +95,15 @@ fn pipeline(
     Ok(blueshift_shaders::pipeline(dev, name, bindings, push)?)
 }
 
-const TRACE_BINDINGS: [Binding; 11] = [
-    Binding::storage(0, "bvh_nodes"),
-    Binding::storage(1, "bvh_triangles"),
-    Binding::storage(2, "triangle_shading"),
-    Binding::storage(3, "materials"),
-    Binding::storage(4, "textures"),
-    Binding::storage(5, "texels"),
-    Binding::storage(6, "lights"),
+/// Bindings of every path-tracer variant (and of the all-runtime `trace/trace`).
+pub const TRACE_BINDINGS: [Binding; 11] = [
+    Binding::image(0, "scene_nodes"),
+    Binding::image(1, "scene_triangles"),
+    Binding::image(2, "scene_shading"),
+    Binding::image(3, "scene_materials"),
+    Binding::image(4, "scene_textures"),
+    Binding::image(5, "scene_texels"),
+    Binding::image(6, "scene_lights"),
     Binding::storage(7, "scene_info"),
     Binding::storage(8, "seeds"),
     Binding::storage(9, "mask"),
@@ -43,11 +114,13 @@ impl ImagePasses {
     pub fn new(dev: &Device) -> Result<Self> {
         let image = size_of::<ImageParams>();
         Ok(Self {
-            trace: pipeline(
+            dev: dev.clone(),
+            trace: Vec::new(),
+            upload: pipeline(
                 dev,
-                "trace/trace",
-                &TRACE_BINDINGS,
-                size_of::<TraceParams>(),
+                "trace/upload_texels",
+                &[Binding::storage(0, "src"), Binding::image(1, "dst")],
+                4,
             )?,
             accumulate: pipeline(
                 dev,
@@ -67,47 +140,69 @@ impl ImagePasses {
         })
     }
 
+    /// The path-tracer pipeline of `variant`, created on first use (lavapipe compiles a
+    /// pipeline on its first dispatch, so unused variants cost nothing).
+    fn trace_pipeline(&mut self, variant: TraceVariant) -> Result<&ComputePipeline> {
+        let name = variant.shader();
+        let i = match self.trace.iter().position(|(n, _)| *n == name) {
+            Some(i) => i,
+            None => {
+                let p = pipeline(&self.dev, name, &TRACE_BINDINGS, size_of::<TraceParams>())?;
+                self.trace.push((name, p));
+                self.trace.len() - 1
+            }
+        };
+        Ok(&self.trace[i].1)
+    }
+
     /// Records the path-tracing pass writing the raw estimate of this frame: one dispatch per
-    /// sample (see `TraceParams::sample_index`).
+    /// [`samples_per_dispatch`] samples (see `TraceParams::sample_index`).
+    #[allow(clippy::too_many_arguments)]
     pub fn trace(
-        &self,
+        &mut self,
         rec: &mut Recorder,
         p: &TraceParams,
         scene: &SceneBuffers,
+        images: &SceneImages,
         seeds: &Buffer,
         mask: &Buffer,
         estimate: &Buffer,
     ) -> Result<()> {
-        let s = scene;
-        for sample in 0..p.spp {
+        let variant = TraceVariant::of(p, images)?;
+        let pipeline = self.trace_pipeline(variant)?;
+        let per_dispatch = samples_per_dispatch(p.max_bounces).min(p.spp);
+        for first in (0..p.spp).step_by(per_dispatch as usize) {
             let p = TraceParams {
-                sample_index: sample,
+                sample_index: first,
+                sample_count: per_dispatch.min(p.spp - first),
                 ..*p
             };
-            self.trace_one(rec, &p, s, seeds, mask, estimate)?;
+            Self::trace_one(rec, pipeline, &p, scene, images, seeds, mask, estimate)?;
         }
         Ok(())
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn trace_one(
-        &self,
         rec: &mut Recorder,
+        pipeline: &ComputePipeline,
         p: &TraceParams,
         s: &SceneBuffers,
+        i: &SceneImages,
         seeds: &Buffer,
         mask: &Buffer,
         estimate: &Buffer,
     ) -> Result<()> {
         rec.dispatch(
-            &self.trace,
+            pipeline,
             &[
-                (&s.nodes).into(),
-                (&s.triangles).into(),
-                (&s.shading).into(),
-                (&s.materials).into(),
-                (&s.textures).into(),
-                (&s.texels).into(),
-                (&s.lights).into(),
+                (&i.nodes).into(),
+                (&i.triangles).into(),
+                (&i.shading).into(),
+                (&i.materials).into(),
+                (&i.textures).into(),
+                (&i.texels).into(),
+                (&i.lights).into(),
                 (&s.info).into(),
                 seeds.into(),
                 mask.into(),
@@ -115,6 +210,25 @@ impl ImagePasses {
             ],
             bytemuck::bytes_of(p),
             [p.width.div_ceil(8), p.height.div_ceil(8), 1],
+        )?;
+        Ok(())
+    }
+
+    /// Records the copy of `count` texels from `src` into the scene image `dst`.
+    pub fn upload_texels(
+        &self,
+        rec: &mut Recorder,
+        src: &Buffer,
+        dst: &Image,
+        count: u32,
+    ) -> Result<()> {
+        let groups = count.div_ceil(64);
+        let x = groups.min(self.dev.info().max_compute_work_group_count[0]);
+        rec.dispatch(
+            &self.upload,
+            &[src.into(), dst.into()],
+            bytemuck::bytes_of(&count),
+            [x, groups.div_ceil(x), 1],
         )?;
         Ok(())
     }

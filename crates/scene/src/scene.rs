@@ -106,6 +106,13 @@ impl Scene {
         load::load(path.as_ref(), options)
     }
 
+    /// Loads a `.gltf` (JSON) or `.glb` from memory. External buffer and image URIs are
+    /// resolved against `base` (with `None` they are an error); errors name the source
+    /// `<memory>`.
+    pub fn from_slice(bytes: &[u8], base: Option<&Path>, options: &LoadOptions) -> Result<Scene> {
+        load::load_bytes(Path::new("<memory>"), bytes, base, options)
+    }
+
     /// World-space bounds of all triangles.
     pub fn bounds(&self) -> Aabb {
         let mut b = Aabb::EMPTY;

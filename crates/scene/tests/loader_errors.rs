@@ -39,13 +39,11 @@ fn invalid_references_fail_validation() {
     let mut doc = one_quad().json(Some(embedded_uri(one_quad().bin())));
     doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(99);
     let e = load(&write_json(dir.path(), "badref.gltf", &doc)).unwrap_err();
-    // gltf-json's validator itself indexes out of bounds here; the loader turns that into an
-    // error instead of a panic.
-    assert!(
-        matches!(e, SceneError::Parse { .. } | SceneError::Internal { .. }),
-        "{e}"
-    );
+    // gltf-json's validator itself indexes out of bounds here (a panic the loader used to
+    // catch); the loader's pre-check now reports it as a validation error.
+    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
     assert!(e.to_string().contains("badref.gltf"), "{e}");
+    assert!(e.to_string().contains("Index out of bounds"), "{e}");
 }
 
 #[test]
@@ -271,4 +269,63 @@ fn scene_load_is_the_public_entry() {
     let dir = tmp();
     let p = write(dir.path(), "ok.gltf", &one_quad().to_gltf_embedded());
     assert_eq!(Scene::load(&p).unwrap().triangles.len(), 2);
+}
+
+#[test]
+fn from_slice_loads_embedded_and_glb_but_not_external_buffers() {
+    let opts = blueshift_scene::LoadOptions {
+        quiet: true,
+        ..Default::default()
+    };
+    let b = one_quad();
+    let embedded = Scene::from_slice(&b.to_gltf_embedded(), None, &opts).unwrap();
+    assert_eq!(embedded.triangles.len(), 2);
+    assert_eq!(
+        Scene::from_slice(&b.to_glb(), None, &opts)
+            .unwrap()
+            .triangles
+            .len(),
+        2
+    );
+    let (json, _) = b.to_gltf_external("quad.bin");
+    let e = Scene::from_slice(&json, None, &opts).unwrap_err();
+    assert!(matches!(e, SceneError::Buffer { .. }), "{e}");
+    assert!(e.to_string().contains("<memory>"), "{e}");
+}
+
+#[test]
+fn device_files_and_bad_percent_encoding_are_errors_not_hangs_or_panics() {
+    let dir = tmp();
+    for uri in ["/dev/zero", "file:///dev/zero", "%FF%FE.bin"] {
+        let mut doc = one_quad().json(Some(embedded_uri(one_quad().bin())));
+        doc["buffers"][0]["uri"] = json!(uri);
+        let e = load(&write_json(dir.path(), "uri.gltf", &doc)).unwrap_err();
+        assert!(matches!(e, SceneError::Buffer { .. }), "{uri}: {e}");
+    }
+}
+
+#[test]
+fn fuzz_findings_are_errors_not_caught_reader_panics() {
+    // Each of these made the glTF reader panic (caught as SceneError::Internal before the
+    // loader's pre-checks): an image with a bufferView but no mimeType, an image with neither
+    // uri nor bufferView, and a relative URI whose percent-encoding is not UTF-8 (decoded by
+    // the reader even when loading from memory).
+    let opts = blueshift_scene::LoadOptions {
+        quiet: true,
+        ..Default::default()
+    };
+    let mut no_mime = one_quad().json(Some(embedded_uri(one_quad().bin())));
+    no_mime["images"] = json!([{ "bufferView": 0 }]);
+    let mut no_source = one_quad().json(Some(embedded_uri(one_quad().bin())));
+    no_source["images"] = json!([{ "name": "nothing" }]);
+    let mut bad_uri = one_quad().json(None);
+    bad_uri["buffers"][0]["uri"] = json!("%AA%BB");
+    for (what, doc) in [("mimeType", no_mime), ("uri", no_source), ("uri", bad_uri)] {
+        let bytes = serde_json::to_vec(&doc).unwrap();
+        let e = Scene::from_slice(&bytes, None, &opts).unwrap_err();
+        assert!(
+            matches!(e, SceneError::Parse { .. } | SceneError::Buffer { .. }),
+            "{what}: {e}"
+        );
+    }
 }

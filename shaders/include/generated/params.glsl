@@ -34,18 +34,19 @@ struct TraceParams {
     uint frame; // offset 60, size 4
     uint spp; // offset 64, size 4
     uint sample_index; // offset 68, size 4
-    uint max_bounces; // offset 72, size 4
-    uint sampler_kind; // offset 76, size 4
-    uint flags; // offset 80, size 4
-    uint mask_mode; // offset 84, size 4
-    uint mask_size; // offset 88, size 4
-    uint mask_frames; // offset 92, size 4
-    uint mask_offset_x; // offset 96, size 4
-    uint mask_offset_y; // offset 100, size 4
-    vec2 view_offset; // offset 104, size 8
-    vec2 view_size; // offset 112, size 8
+    uint sample_count; // offset 72, size 4
+    uint max_bounces; // offset 76, size 4
+    uint sampler_kind; // offset 80, size 4
+    uint flags; // offset 84, size 4
+    uint mask_mode; // offset 88, size 4
+    uint mask_size; // offset 92, size 4
+    uint mask_frames; // offset 96, size 4
+    uint mask_offset_x; // offset 100, size 4
+    uint mask_offset_y; // offset 104, size 4
+    vec2 view_offset; // offset 108, size 8
+    vec2 view_size; // offset 116, size 8
 };
-const uint TRACE_PARAMS_SIZE = 120;
+const uint TRACE_PARAMS_SIZE = 124;
 
 struct ImageParams {
     uint width; // offset 0, size 4

@@ -12,6 +12,14 @@ const uint TEXTURE_WRAP_REPEAT = 0u;
 const uint TEXTURE_WRAP_CLAMP = 1u;
 const uint TEXTURE_WRAP_MIRROR = 2u;
 const uint TEXTURE_FILTER_NEAREST = 16u;
+const uint SCENE_TEXELS_WIDTH_LOG2 = 12u;
+const uint NODE_TEXELS = 2u;
+const uint TRIANGLE_TEXELS = 3u;
+const uint SHADING_TEXELS = 4u;
+const uint MATERIAL_TEXELS = 3u;
+const uint LIGHT_TEXELS = 1u;
+const uint TEXTURE_TEXELS = 1u;
+const uint ATLAS_WORDS_PER_TEXEL = 4u;
 struct BvhNode {
     vec3 aabb_min; // offset 0, size 12
     uint left_first; // offset 12, size 4

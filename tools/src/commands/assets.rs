@@ -85,7 +85,11 @@ pub fn jobs(root: &str) -> Vec<Job> {
         job(
             "scene --name all --out {root}/scenes",
             0,
-            &["scenes/cornell-box.gltf", "scenes/textured.gltf", "scenes/edges.gltf"],
+            &[
+                "scenes/cornell-box.gltf",
+                "scenes/textured.gltf",
+                "scenes/edges.gltf",
+            ],
             root,
         ),
     ]

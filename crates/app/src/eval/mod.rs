@@ -144,10 +144,10 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     if !(1..=64).contains(&args.sequences) {
         bail!("--sequences {} is outside 1..=64", args.sequences);
     }
+    let scene = crate::render::load_scene(&args.scene)?;
     let path = scene_path(&args.scene);
     let scene_bytes =
         std::fs::read(&path).with_context(|| format!("reading scene {}", path.display()))?;
-    let scene = crate::render::load_scene(&args.scene)?;
     let assets = load_assets(&crate::render::SceneArgs {
         scene: args.scene.clone(),
         width: args.width,
@@ -158,7 +158,6 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
         sampler: None,
         assets: args.assets.clone(),
     })?;
-    prepare_dir(&args.out)?;
     let cache = args.cache.clone().unwrap_or_else(|| {
         std::env::var_os("HOME")
             .map_or(PathBuf::from(".cache"), PathBuf::from)
@@ -170,6 +169,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
         ..RenderConfig::new(args.width, args.height)
     }
     .validate(&dev)?;
+    let _out = prepare_dir(&args.out)?;
 
     let mut runs = Vec::new();
     let mut configs = Vec::new();

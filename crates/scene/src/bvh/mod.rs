@@ -20,6 +20,8 @@ use glam::Vec3;
 
 /// Most triangles in one leaf.
 pub const MAX_LEAF_SIZE: usize = 4;
+// bvh.glsl packs a node's triangle count into 3 bits of a traversal-stack entry.
+const _: () = assert!(MAX_LEAF_SIZE < 8);
 /// Subtrees with more triangles than this are built with `rayon::join`.
 pub const PARALLEL_THRESHOLD: usize = 4096;
 

@@ -6,20 +6,26 @@
 //!
 //! | buffer             | element            | GLSL array name     | used by                |
 //! |--------------------|--------------------|---------------------|------------------------|
-//! | BVH nodes          | [`BvhNode`]        | `bvh_nodes[]`       | `bvh.glsl` (required)  |
-//! | BVH triangles      | [`GpuTriangle`]    | `bvh_triangles[]`   | `bvh.glsl` (required)  |
-//! | triangle shading   | [`TriangleShading`]| `triangle_shading[]`| trace shader           |
-//! | materials          | [`GpuMaterial`]    | `materials[]`       | trace shader           |
-//! | textures           | [`GpuTexture`]     | `textures[]`        | trace shader           |
-//! | texels             | `uint` (RGBA8)     | `texels[]`          | trace shader           |
-//! | lights             | [`GpuLight`]       | `lights[]`          | trace shader           |
+//! | BVH nodes          | [`BvhNode`]        | `bvh_nodes[]`       | `bvh.glsl` (test shader) |
+//! | BVH triangles      | [`GpuTriangle`]    | `bvh_triangles[]`   | `bvh.glsl` (test shader) |
+//! | triangle shading   | [`TriangleShading`]| `triangle_shading[]`|                        |
+//! | materials          | [`GpuMaterial`]    | `materials[]`       |                        |
+//! | textures           | [`GpuTexture`]     | `textures[]`        |                        |
+//! | texels             | `uint` (RGBA8)     | `texels[]`          |                        |
+//! | lights             | [`GpuLight`]       | `lights[]`          |                        |
 //!
 //! Triangles, shading and lights are all in BVH leaf order: `Hit::triangle` indexes
 //! `bvh_triangles[]` and `triangle_shading[]` alike.
+//!
+//! The path tracer reads the same arrays repacked as texels of storage images
+//! ([`SceneGpu::texels`], layout in the `texels` module), which lavapipe loads several
+//! times faster than divergent storage-buffer elements.
 
 mod build;
+mod texels;
 
 pub use build::{GpuBuffer, SceneGpu};
+pub use texels::*;
 
 use blueshift_layout::{Header, gpu_struct};
 use glam::{Vec2, Vec3};
@@ -219,6 +225,14 @@ pub(crate) fn header() -> Header {
         .constant("TEXTURE_WRAP_CLAMP", TEXTURE_WRAP_CLAMP)
         .constant("TEXTURE_WRAP_MIRROR", TEXTURE_WRAP_MIRROR)
         .constant("TEXTURE_FILTER_NEAREST", TEXTURE_FILTER_NEAREST)
+        .constant("SCENE_TEXELS_WIDTH_LOG2", SCENE_TEXELS_WIDTH_LOG2)
+        .constant("NODE_TEXELS", NODE_TEXELS)
+        .constant("TRIANGLE_TEXELS", TRIANGLE_TEXELS)
+        .constant("SHADING_TEXELS", SHADING_TEXELS)
+        .constant("MATERIAL_TEXELS", MATERIAL_TEXELS)
+        .constant("LIGHT_TEXELS", LIGHT_TEXELS)
+        .constant("TEXTURE_TEXELS", TEXTURE_TEXELS)
+        .constant("ATLAS_WORDS_PER_TEXEL", ATLAS_WORDS_PER_TEXEL)
         .push::<BvhNode>()
         .push::<GpuTriangle>()
         .push::<TriangleShading>()

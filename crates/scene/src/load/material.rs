@@ -12,7 +12,7 @@ use std::path::Path;
 /// dropped from their materials).
 pub(super) fn load_images(
     document: &gltf::Document,
-    base: &Path,
+    base: Option<&Path>,
     ctx: &mut Ctx,
 ) -> (Vec<Image>, Vec<Option<u32>>) {
     let mut images = Vec::new();
@@ -35,7 +35,7 @@ pub(super) fn load_images(
     (images, map)
 }
 
-fn decode(image: &gltf::Image, base: &Path, ctx: &Ctx) -> Result<Image, String> {
+fn decode(image: &gltf::Image, base: Option<&Path>, ctx: &Ctx) -> Result<Image, String> {
     if let gltf::image::Source::View { view, .. } = image.source() {
         let len = ctx
             .buffers
@@ -49,7 +49,17 @@ fn decode(image: &gltf::Image, base: &Path, ctx: &Ctx) -> Result<Image, String> 
             return Err(format!("bufferView {} is out of range", view.index()));
         }
     }
-    let data = gltf::image::Data::from_source(image.source(), Some(base), ctx.buffers)
+    let mut base = base;
+    if let gltf::image::Source::Uri { uri, .. } = image.source() {
+        super::uri::check(uri, base)?;
+        if base.is_none() {
+            if !uri.starts_with("data:") {
+                return Err("an external image in a scene loaded from memory".into());
+            }
+            base = Some(Path::new(".")); // the reader decodes data URIs only when given a base
+        }
+    }
+    let data = gltf::image::Data::from_source(image.source(), base, ctx.buffers)
         .map_err(|e| e.to_string())?;
     let (w, h) = (data.width as usize, data.height as usize);
     let n = w * h;

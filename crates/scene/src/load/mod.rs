@@ -18,7 +18,9 @@
 //! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
 
 mod material;
+mod precheck;
 mod primitive;
+mod uri;
 
 use crate::scene::{Image, Material, Scene, Texture};
 use crate::{Camera, Result, SceneError};
@@ -79,16 +81,42 @@ pub(crate) struct Ctx<'a> {
 }
 
 pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene> {
-    if !path.exists() {
-        return Err(SceneError::NotFound {
-            path: path.to_path_buf(),
-        });
+    let io = |source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let meta = match std::fs::metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(SceneError::NotFound {
+                path: path.to_path_buf(),
+            });
+        }
+        other => other.map_err(io)?,
+    };
+    if !meta.is_file() {
+        return Err(io(std::io::Error::other("not a regular file")));
     }
+    let bytes = std::fs::read(path).map_err(io)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    load_bytes(path, &bytes, Some(base), options)
+}
+
+/// Loads from bytes (`.gltf` JSON or `.glb`); `name` only labels errors. External URIs are
+/// resolved against `base`; with `None` they are an error.
+pub(crate) fn load_bytes(
+    name: &Path,
+    bytes: &[u8],
+    base: Option<&Path>,
+    options: &LoadOptions,
+) -> Result<Scene> {
+    let path = name;
     // The gltf crate can still panic on some hostile inputs our own checks miss (its validator
     // indexes arrays with unchecked references); never let that escape as a panic.
     install_quiet_panic_hook();
     QUIET_PANICS.with(|q| q.set(true));
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| load_inner(path)));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        load_inner(path, bytes, base)
+    }));
     QUIET_PANICS.with(|q| q.set(false));
     let mut scene = match result {
         Ok(r) => r?,
@@ -98,9 +126,10 @@ pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene> {
                 .cloned()
                 .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
                 .unwrap_or_else(|| "panic".into());
+            let location = PANIC_LOCATION.with(|l| l.take()).unwrap_or_default();
             return Err(SceneError::Internal {
                 path: path.to_path_buf(),
-                message,
+                message: format!("{message} (at {location})"),
             });
         }
     };
@@ -117,6 +146,10 @@ pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene> {
 
 thread_local! {
     static QUIET_PANICS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// `file:line` of the last quiet panic (fuzz targets use it to tell our bugs from the
+    /// glTF reader's).
+    static PANIC_LOCATION: std::cell::RefCell<Option<String>> =
+        const { std::cell::RefCell::new(None) };
 }
 
 /// Wraps the process panic hook once so that a panic caught inside [`load`] on this thread is
@@ -127,24 +160,30 @@ fn install_quiet_panic_hook() {
     ONCE.call_once(|| {
         let previous = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
-            if !QUIET_PANICS.with(|q| q.get()) {
+            if QUIET_PANICS.with(|q| q.get()) {
+                let at = info
+                    .location()
+                    .map(|l| format!("{}:{}", l.file(), l.line()));
+                PANIC_LOCATION.with(|l| *l.borrow_mut() = at);
+            } else {
                 previous(info);
             }
         }));
     });
 }
 
-fn load_inner(path: &Path) -> Result<Scene> {
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
+    let parse = |source| SceneError::Parse {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
     let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice(&bytes).map_err(|source| SceneError::Parse {
-            path: path.to_path_buf(),
-            source,
-        })?;
-    let base = path.parent().unwrap_or(Path::new("."));
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(parse)?;
+    let problems = precheck::check(document.as_json());
+    if !problems.is_empty() {
+        return Err(parse(gltf::Error::Validation(problems)));
+    }
+    let document = gltf::Document::from_json(document.into_json()).map_err(parse)?;
     let buffers = load_buffers(path, &document, base, blob)?;
     let mut ctx = Ctx {
         path,
@@ -270,7 +309,7 @@ fn compact_images(images: Vec<Image>, textures: &mut [Texture]) -> Vec<Image> {
 fn load_buffers(
     path: &Path,
     document: &gltf::Document,
-    base: &Path,
+    base: Option<&Path>,
     mut blob: Option<Vec<u8>>,
 ) -> Result<Vec<buffer::Data>> {
     let mut out = Vec::new();
@@ -286,7 +325,10 @@ fn load_buffers(
             uri: uri.clone(),
             problem,
         };
-        let data = buffer::Data::from_source_and_blob(b.source(), Some(base), &mut blob)
+        if let buffer::Source::Uri(u) = b.source() {
+            uri::check(u, base).map_err(|e| err(format!("cannot load: {e}")))?;
+        }
+        let data = buffer::Data::from_source_and_blob(b.source(), base, &mut blob)
             .map_err(|e| err(format!("cannot load: {e}")))?;
         if data.len() < b.length() {
             return Err(err(format!(

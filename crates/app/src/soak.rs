@@ -1,0 +1,146 @@
+//! `blueshift soak`: a long run of the frame loop that checks, every `--check-every` frames,
+//! that the seed buffer is still a permutation of the initial seeds and that host RSS and
+//! device memory in use have not grown since the warm-up. Prints the figures of every check;
+//! fails (exit 1) on the first violation.
+use crate::GpuOpts;
+use crate::render::{SceneArgs, config, load_assets, load_scene};
+use anyhow::{Result, bail};
+use blueshift_permute::is_permutation_of;
+use blueshift_render::Renderer;
+use std::time::Instant;
+
+#[derive(clap::Args, Debug)]
+pub struct SoakArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[arg(long, default_value_t = 10_000)]
+    pub frames: u32,
+    /// Check the seeds and memory every this many frames.
+    #[arg(long, default_value_t = 1000)]
+    pub check_every: u32,
+    /// Frames before the memory baseline is taken (allocator pools, lazy pipeline compiles);
+    /// at most --check-every.
+    #[arg(long, default_value_t = 100)]
+    pub warmup: u32,
+    /// Allowed host RSS growth over the baseline, KiB.
+    #[arg(long, default_value_t = 8192)]
+    pub rss_tolerance_kib: u64,
+    /// Allowed growth of device memory in use over the baseline, bytes (allocations are exact).
+    #[arg(long, default_value_t = 0)]
+    pub device_tolerance: u64,
+    /// A method that permutes seeds: sort or sort-retarget.
+    #[arg(long, default_value = "sort-retarget")]
+    pub method: String,
+}
+
+/// Resident set size of this process in KiB (`VmRSS` of /proc/self/status).
+pub fn rss_kib() -> Result<u64> {
+    let status = std::fs::read_to_string("/proc/self/status")?;
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmRSS:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .ok_or_else(|| anyhow::anyhow!("no VmRSS line in /proc/self/status"))
+}
+
+struct Baseline {
+    rss_kib: u64,
+    device_bytes: u64,
+}
+
+pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
+    if !(1..=10_000_000).contains(&a.frames) {
+        bail!("--frames {} is outside 1..=10000000", a.frames);
+    }
+    if a.check_every == 0 || a.check_every > a.frames {
+        bail!("--check-every {} is outside 1..=--frames", a.check_every);
+    }
+    // The baseline is taken at the latest at the first check.
+    let warmup = a.warmup.clamp(1, a.check_every);
+    let cfg = config(&a.scene, &a.method)?;
+    if !cfg.method.sorts() {
+        bail!(
+            "soak checks the seed permutation: --method must be sort or sort-retarget, not {}",
+            cfg.method
+        );
+    }
+    let scene = load_scene(&a.scene.scene)?;
+    let assets = load_assets(&a.scene)?;
+    let dev = gpu.device()?;
+    let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
+    println!(
+        "soak: {} frames of {} at {}x{}, spp {}, bounces {}, block {} on {}; check every {}",
+        a.frames,
+        cfg.method,
+        cfg.width,
+        cfg.height,
+        cfg.spp,
+        cfg.bounces,
+        cfg.block,
+        dev.info().name,
+        a.check_every
+    );
+    let mut base: Option<Baseline> = None;
+    let mut window = Instant::now();
+    let mut worst = (0i64, 0i64);
+    for f in 1..=a.frames {
+        r.render_frame()?;
+        if f == warmup {
+            base = Some(Baseline {
+                rss_kib: rss_kib()?,
+                device_bytes: dev.allocated_bytes(),
+            });
+            println!(
+                "baseline after {f} frames: RSS {} KiB, device memory {} bytes",
+                rss_kib()?,
+                dev.allocated_bytes()
+            );
+        }
+        if f % a.check_every != 0 && f != a.frames {
+            continue;
+        }
+        let ms = window.elapsed().as_secs_f64() * 1e3 / f64::from(a.check_every);
+        let seeds = r.read_seeds()?;
+        let permutation = is_permutation_of(&seeds, r.initial_seeds());
+        let (rss, device) = (rss_kib()?, dev.allocated_bytes());
+        let b = base
+            .as_ref()
+            .map_or((rss, device), |b| (b.rss_kib, b.device_bytes));
+        let (d_rss, d_dev) = (rss as i64 - b.0 as i64, device as i64 - b.1 as i64);
+        worst = (worst.0.max(d_rss), worst.1.max(d_dev));
+        println!(
+            "frame {f:>8}: seeds {} ({} seeds), RSS {rss} KiB ({d_rss:+} KiB), device memory \
+             {device} bytes ({d_dev:+} bytes), {ms:.2} ms/frame",
+            if permutation {
+                "a permutation"
+            } else {
+                "NOT a permutation"
+            },
+            seeds.len()
+        );
+        if !permutation {
+            bail!("frame {f}: the seed buffer is no longer a permutation of the initial seeds");
+        }
+        if d_rss > a.rss_tolerance_kib as i64 {
+            bail!(
+                "frame {f}: host RSS grew by {d_rss} KiB since the warm-up (tolerance {} KiB)",
+                a.rss_tolerance_kib
+            );
+        }
+        if d_dev > a.device_tolerance as i64 {
+            bail!(
+                "frame {f}: device memory in use grew by {d_dev} bytes since the warm-up \
+                 (tolerance {})",
+                a.device_tolerance
+            );
+        }
+        window = Instant::now();
+    }
+    crate::check_validation(&dev)?;
+    println!(
+        "soak passed: {} frames, seeds a permutation at every check, max growth RSS {:+} KiB, \
+         device memory {:+} bytes",
+        a.frames, worst.0, worst.1
+    );
+    Ok(())
+}

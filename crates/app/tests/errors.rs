@@ -1,0 +1,476 @@
+//! Every bad input of the README table "What happens when ...": the binary prints one
+//! `error: ...` line naming the problem, exits with code 1 (never a panic), and leaves no
+//! output file behind.
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_blueshift");
+/// A tiny, fast render.
+const TINY: [&str; 8] = [
+    "--width",
+    "8",
+    "--height",
+    "8",
+    "--bounces",
+    "1",
+    "--frames",
+    "1",
+];
+
+fn assets() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets")
+}
+
+struct Case {
+    dir: tempfile::TempDir,
+}
+
+impl Case {
+    fn new() -> Self {
+        Self {
+            dir: tempfile::tempdir().expect("tempdir"),
+        }
+    }
+    fn path(&self, name: &str) -> PathBuf {
+        self.dir.path().join(name)
+    }
+    fn out(&self) -> PathBuf {
+        self.path("out")
+    }
+    fn write(&self, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
+        let p = self.path(name);
+        std::fs::write(&p, bytes).expect("write input");
+        p
+    }
+    /// Runs `blueshift ARGS` with a clean environment (no inherited BLUESHIFT_* settings).
+    fn run(&self, args: &[&str], env: &[(&str, &str)]) -> Output {
+        let mut cmd = Command::new(BIN);
+        cmd.args(args).env("XDG_RUNTIME_DIR", self.dir.path());
+        for var in [
+            "BLUESHIFT_VALIDATION",
+            "BLUESHIFT_DEVICE_INDEX",
+            "BLUESHIFT_ASSETS",
+            "BLUESHIFT_TEST_DEVICE_LOST",
+            "BLUESHIFT_MAX_STORAGE_BUFFER_RANGE",
+            "BLUESHIFT_TEST_PANIC",
+        ] {
+            cmd.env_remove(var);
+        }
+        for (k, v) in env {
+            cmd.env(k, v);
+        }
+        cmd.output().expect("run blueshift")
+    }
+    /// `blueshift render` of a tiny image into `out/` with extra arguments.
+    fn render(&self, extra: &[&str], env: &[(&str, &str)]) -> Output {
+        self.render_sized(("8", "8"), "1", extra, env)
+    }
+    /// `blueshift render` into `out/` at a size and frame count.
+    fn render_sized(
+        &self,
+        (w, h): (&str, &str),
+        frames: &str,
+        extra: &[&str],
+        env: &[(&str, &str)],
+    ) -> Output {
+        let out = self.out();
+        let mut args = vec!["render", "--out", out.to_str().expect("utf-8 temp path")];
+        args.extend([
+            "--width",
+            w,
+            "--height",
+            h,
+            "--bounces",
+            "1",
+            "--frames",
+            frames,
+        ]);
+        args.extend(extra);
+        self.run(&args, env)
+    }
+    /// Exit code 1, one `error:` line containing every `needle`, no panic, no output file.
+    fn expect_error(&self, o: &Output, needles: &[&str]) -> String {
+        let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert_eq!(o.status.code(), Some(1), "exit code; stderr:\n{stderr}");
+        assert!(!stderr.contains("panicked"), "panic:\n{stderr}");
+        let line = stderr
+            .lines()
+            .find(|l| l.starts_with("error: "))
+            .unwrap_or_else(|| panic!("no 'error:' line in:\n{stderr}"));
+        for n in needles {
+            assert!(line.contains(n), "'{n}' missing from: {line}");
+        }
+        assert_eq!(files_under(&self.out()), Vec::<PathBuf>::new(), "{line}");
+        line.to_string()
+    }
+}
+
+/// Every file below `dir` (none when it does not exist).
+fn files_under(dir: &Path) -> Vec<PathBuf> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut files = Vec::new();
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            files.extend(files_under(&p));
+        } else {
+            files.push(p);
+        }
+    }
+    files
+}
+
+/// A one-triangle glTF with an embedded buffer holding `positions`.
+fn triangle_gltf(positions: [[f32; 3]; 3], extensions: &str) -> String {
+    let bytes: Vec<u8> = positions
+        .iter()
+        .flatten()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],
+        "nodes":[{{"mesh":0}}],"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}}}]}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+          "min":[0,0,0],"max":[1,1,0]}}],
+        "bufferViews":[{{"buffer":0,"byteLength":36}}],
+        "buffers":[{{"byteLength":36,"uri":"data:application/octet-stream;base64,{}"}}]{extensions}}}"#,
+        base64(&bytes)
+    )
+}
+
+fn base64(bytes: &[u8]) -> String {
+    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::new();
+    for c in bytes.chunks(3) {
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
+        for i in 0..4 {
+            if i <= c.len() {
+                s.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+const GOOD: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+
+#[test]
+fn missing_scene_file() {
+    let c = Case::new();
+    let o = c.render(&["--scene", "/nonexistent/scene.gltf"], &[]);
+    c.expect_error(&o, &["/nonexistent/scene.gltf", "file not found"]);
+    let o = c.render(&["--scene", "cornel-box"], &[]);
+    c.expect_error(
+        &o,
+        &["'cornel-box' is neither a file nor a preset", "cornell-box"],
+    );
+}
+
+#[test]
+fn unreadable_scene_file() {
+    let c = Case::new();
+    let dir = c.path("a-directory.gltf");
+    std::fs::create_dir(&dir).expect("mkdir");
+    let o = c.render(&["--scene", dir.to_str().expect("utf-8")], &[]);
+    c.expect_error(
+        &o,
+        &["a-directory.gltf", "cannot read", "not a regular file"],
+    );
+}
+
+#[test]
+fn missing_asset_and_camera_path_files() {
+    let c = Case::new();
+    let empty = c.path("no-assets");
+    std::fs::create_dir(&empty).expect("mkdir");
+    let o = c.render(&["--assets", empty.to_str().expect("utf-8")], &[]);
+    c.expect_error(&o, &["masks/bn64.r16", "No such file"]);
+    let o = c.render(&["--camera-path", "/nonexistent/path.json"], &[]);
+    c.expect_error(
+        &o,
+        &["camera path '/nonexistent/path.json'", "presets: static"],
+    );
+}
+
+#[test]
+fn malformed_gltf_and_camera_path() {
+    let c = Case::new();
+    let p = c.write("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, ");
+    let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+    let line = c.expect_error(&o, &["broken.gltf", "not a valid glTF 2.0 file"]);
+    // The parser's message is printed once, not repeated by the error chain.
+    assert_eq!(line.matches("EOF").count(), 1, "{line}");
+    let p = c.write("glb.glb", b"glTF\x02\x00\x00\x00\xff\xff\xff\xff");
+    let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+    c.expect_error(&o, &["glb.glb", "not a valid glTF 2.0 file"]);
+    let p = c.write("path.json", r#"{"keyframes": 3}"#);
+    let o = c.render(&["--camera-path", p.to_str().expect("utf-8")], &[]);
+    c.expect_error(&o, &["path.json", "expected a sequence"]);
+}
+
+#[test]
+fn bad_buffer_uris() {
+    let c = Case::new();
+    let good = triangle_gltf(GOOD, "");
+    let start = good.find("data:").expect("data URI");
+    let end = start + good[start..].find('"').expect("end of URI");
+    for (name, uri, needle) in [
+        ("gone.gltf", "gone.bin", "No such file"),
+        ("zero.gltf", "/dev/zero", "/dev/zero is not a regular file"),
+        (
+            "percent.gltf",
+            "%FF.bin",
+            "percent-encoding does not decode to UTF-8",
+        ),
+    ] {
+        let doc = format!("{}{uri}{}", &good[..start], &good[end..]);
+        let p = c.write(name, doc);
+        let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+        c.expect_error(
+            &o,
+            &[name, &format!("buffer 0 ({uri}): cannot load"), needle],
+        );
+    }
+}
+
+#[test]
+fn unsupported_extension() {
+    let c = Case::new();
+    let required = r#","extensionsUsed":["EXT_unknown"],"extensionsRequired":["EXT_unknown"]"#;
+    let p = c.write("required.gltf", triangle_gltf(GOOD, required));
+    let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+    c.expect_error(
+        &o,
+        &["required.gltf", "EXT_unknown", "Unsupported extension"],
+    );
+    // Used but not required: a warning, and the scene renders without it.
+    let p = c.write(
+        "used.gltf",
+        triangle_gltf(GOOD, r#","extensionsUsed":["EXT_unknown"]"#),
+    );
+    let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: extension EXT_unknown not supported, ignored"),
+        "{stderr}"
+    );
+    assert_eq!(files_under(&c.out()).len(), 2); // PNG + EXR
+}
+
+#[test]
+fn non_finite_geometry() {
+    let c = Case::new();
+    for (name, bad) in [("nan.gltf", f32::NAN), ("inf.gltf", f32::INFINITY)] {
+        let p = c.write(
+            name,
+            triangle_gltf([[0.0; 3], [bad, 0.0, 0.0], [0.0, 1.0, 0.0]], ""),
+        );
+        let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+        c.expect_error(&o, &[name, "vertex 1 has a non-finite position"]);
+    }
+}
+
+#[test]
+fn empty_scene() {
+    let c = Case::new();
+    let p = c.write(
+        "empty.gltf",
+        r#"{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[]}]}"#,
+    );
+    let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+    c.expect_error(&o, &["empty.gltf", "no triangles to render"]);
+    let p = c.write("degenerate.gltf", triangle_gltf([[0.0; 3]; 3], ""));
+    let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+    c.expect_error(&o, &["degenerate.gltf", "non-zero area"]);
+}
+
+#[test]
+fn scene_over_device_limits() {
+    let c = Case::new();
+    // The test hook lowers the device's maxStorageBufferRange to 2 KiB: the Cornell box's
+    // scene buffers no longer fit, while the 8x8 image's buffers (1 KiB) still do.
+    let o = c.render(&[], &[("BLUESHIFT_MAX_STORAGE_BUFFER_RANGE", "2048")]);
+    c.expect_error(
+        &o,
+        &[
+            "buffer needs",
+            "over the device limit maxStorageBufferRange",
+        ],
+    );
+}
+
+#[test]
+fn resolution_out_of_range() {
+    let c = Case::new();
+    for (w, h) in [("0", "8"), ("8", "0"), ("20000", "8")] {
+        let o = c.render_sized((w, h), "1", &[], &[]);
+        c.expect_error(&o, &[&format!("resolution {w}x{h} is outside 1..=")]);
+    }
+    // Within the image limit but over the device's storage-buffer range.
+    let o = c.render_sized(
+        ("64", "64"),
+        "1",
+        &[],
+        &[("BLUESHIFT_MAX_STORAGE_BUFFER_RANGE", "32768")],
+    );
+    c.expect_error(&o, &["resolution 64x64", "storage-buffer range"]);
+}
+
+#[test]
+fn block_size_out_of_range() {
+    let c = Case::new();
+    for b in ["1", "9"] {
+        let o = c.render(&["--block", b], &[]);
+        c.expect_error(&o, &[&format!("block size {b} is outside 2..=8")]);
+    }
+    let o = c.run(
+        &["bench", "--block", "0", "--width", "8", "--height", "8"],
+        &[],
+    );
+    c.expect_error(&o, &["block size 0 is outside 2..=8"]);
+}
+
+#[test]
+fn mask_size_does_not_match_retarget_table() {
+    let c = Case::new();
+    let dir = c.path("assets");
+    for sub in ["masks", "retarget"] {
+        std::fs::create_dir_all(dir.join(sub)).expect("mkdir");
+    }
+    let a = assets();
+    let copy = |from: &str, to: &str| {
+        std::fs::copy(a.join(from), dir.join(to)).expect("copy asset");
+    };
+    copy("masks/bn32.r16", "masks/bn64.r16"); // a 32x32 mask under the 64x64 name
+    copy("retarget/bn64_s48_36_r6.bin", "retarget/bn64_s48_36_r6.bin");
+    copy("masks/stbn64x32.r16", "masks/stbn64x32.r16");
+    let o = c.render(&["--assets", dir.to_str().expect("utf-8")], &[]);
+    c.expect_error(&o, &["is for a 64x64 mask", "is 32x32"]);
+}
+
+#[test]
+fn output_directory_not_writable() {
+    let c = Case::new();
+    let file = c.write("a-file", "not a directory");
+    let out = file.join("out");
+    let mut args = vec!["render", "--out", out.to_str().expect("utf-8")];
+    args.extend(TINY);
+    let o = c.run(&args, &[]);
+    c.expect_error(&o, &["cannot create output directory", "a-file/out"]);
+    // A read-only directory (root writes anyway: only checked as another user).
+    let ro = c.path("read-only");
+    std::fs::create_dir(&ro).expect("mkdir");
+    set_mode(&ro, 0o555);
+    if std::fs::write(ro.join("probe"), b"").is_err() {
+        let mut args = vec!["render", "--out", ro.to_str().expect("utf-8")];
+        args.extend(TINY);
+        let o = c.run(&args, &[]);
+        c.expect_error(&o, &["read-only", "is not writable"]);
+    }
+    set_mode(&ro, 0o755);
+}
+
+fn set_mode(p: &Path, mode: u32) {
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(p, std::fs::Permissions::from_mode(mode)).expect("chmod");
+}
+
+#[test]
+fn no_vulkan_device() {
+    let c = Case::new();
+    let env = [
+        ("VK_ICD_FILENAMES", "/nonexistent/icd.json"),
+        ("VK_DRIVER_FILES", "/nonexistent/icd.json"),
+    ];
+    let o = c.render(&[], &env);
+    c.expect_error(&o, &["no Vulkan device", "mesa-vulkan-drivers"]);
+    let o = c.run(&["info"], &env);
+    c.expect_error(&o, &["no Vulkan device"]);
+}
+
+#[test]
+fn validation_layers_not_installed() {
+    let c = Case::new();
+    let env = [
+        ("VK_LAYER_PATH", "/nonexistent"),
+        ("VK_ADD_LAYER_PATH", "/nonexistent"),
+        ("XDG_DATA_DIRS", "/nonexistent"),
+        ("XDG_DATA_HOME", "/nonexistent"),
+        ("VK_INSTANCE_LAYERS", ""),
+    ];
+    let o = c.render(&["--validation"], &env);
+    c.expect_error(
+        &o,
+        &[
+            "VK_LAYER_KHRONOS_validation is not installed",
+            "vulkan-validationlayers",
+        ],
+    );
+}
+
+#[test]
+fn device_lost_names_the_pass() {
+    let c = Case::new();
+    for pass in ["trace", "retarget"] {
+        let o = c.render(&[], &[("BLUESHIFT_TEST_DEVICE_LOST", pass)]);
+        c.expect_error(
+            &o,
+            &[&format!("device was lost while running pass '{pass}'")],
+        );
+    }
+}
+
+#[test]
+fn other_bad_arguments_are_errors_not_panics() {
+    let c = Case::new();
+    let o = c.render(&["--method", "nope"], &[]);
+    c.expect_error(&o, &["unknown method 'nope'", "sort-retarget"]);
+    let o = c.render(&["--sampler", "nope"], &[]);
+    c.expect_error(&o, &["unknown sampler 'nope'"]);
+    let o = c.render_sized(("8", "8"), "0", &[], &[]);
+    c.expect_error(&o, &["--frames 0"]);
+    let o = c.run(&["render", "--no-such-flag"], &[]);
+    c.expect_error(&o, &["unexpected argument '--no-such-flag'"]);
+    let out = c.out();
+    let o = c.run(
+        &[
+            "eval",
+            "--scene",
+            "/nonexistent.glb",
+            "--out",
+            out.to_str().expect("utf-8"),
+        ],
+        &[],
+    );
+    c.expect_error(&o, &["/nonexistent.glb: file not found"]);
+    let o = c.run(
+        &[
+            "soak",
+            "--method",
+            "white",
+            "--frames",
+            "10",
+            "--check-every",
+            "5",
+        ],
+        &[],
+    );
+    c.expect_error(&o, &["--method must be sort or sort-retarget"]);
+}
+
+#[test]
+fn a_panic_is_an_internal_error_with_exit_code_2() {
+    let c = Case::new();
+    let o = c.render(&[], &[("BLUESHIFT_TEST_PANIC", "1")]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.starts_with("internal error: "), "{stderr}");
+    assert!(stderr.contains("this is a bug"), "{stderr}");
+}

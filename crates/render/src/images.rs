@@ -1,0 +1,73 @@
+//! The scene as storage images for the trace pass (layout: `blueshift_scene::gpu::texels`):
+//! each texel array is uploaded to a staging buffer and copied into its `rgba32ui` image by
+//! `trace/upload_texels`, once per scene.
+use crate::passes::ImagePasses;
+use crate::{RenderError, Result};
+use blueshift_device::{Buffer, Device, Image, Recorder, vk};
+use blueshift_scene::SceneGpu;
+use blueshift_scene::gpu::TexelArray;
+
+/// The scene images, in the trace pass's binding order.
+pub struct SceneImages {
+    pub nodes: Image,
+    pub triangles: Image,
+    pub shading: Image,
+    pub materials: Image,
+    pub textures: Image,
+    pub texels: Image,
+    pub lights: Image,
+    /// Whether any material uses a texture (selects the trace variant with texture lookups).
+    pub textured: bool,
+}
+
+impl std::fmt::Debug for SceneImages {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SceneImages")
+            .field("nodes", &(self.nodes.width, self.nodes.height))
+            .field("textured", &self.textured)
+            .finish_non_exhaustive()
+    }
+}
+
+impl SceneImages {
+    /// Packs `scene` into texels and uploads them (one submission, waited on).
+    pub fn new(dev: &Device, passes: &ImagePasses, scene: &SceneGpu) -> Result<Self> {
+        let t = scene.texels();
+        let max = dev.info().max_image_dimension_2d;
+        if t.max_extent() > max {
+            return Err(RenderError::Scene(format!(
+                "the scene needs a {}-texel image side, over the device's maxImageDimension2D {max}",
+                t.max_extent()
+            )));
+        }
+        let mut rec = Recorder::new(dev, "scene.upload")?;
+        rec.begin()?;
+        rec.begin_pass("upload_texels")?;
+        let mut staging = Vec::new();
+        let mut image = |a: &TexelArray| -> Result<Image> {
+            let (w, h) = a.extent();
+            let img = Image::new(dev, a.name, w, h, vk::Format::R32G32B32A32_UINT)?;
+            let src = Buffer::from_slice(dev, &format!("{}.staging", a.name), &a.texels)?;
+            rec.init_image(&img)?;
+            passes.upload_texels(&mut rec, &src, &img, a.texels.len() as u32)?;
+            staging.push(src);
+            Ok(img)
+        };
+        let images = Self {
+            nodes: image(&t.nodes)?,
+            triangles: image(&t.triangles)?,
+            shading: image(&t.shading)?,
+            materials: image(&t.materials)?,
+            textures: image(&t.textures)?,
+            texels: image(&t.texels)?,
+            lights: image(&t.lights)?,
+            textured: scene
+                .materials
+                .iter()
+                .any(|m| m.base_color_tex >= 0 || m.emissive_tex >= 0 || m.mr_tex >= 0),
+        };
+        rec.submit_and_wait()?;
+        drop(staging);
+        Ok(images)
+    }
+}

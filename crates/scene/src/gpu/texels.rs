@@ -1,0 +1,317 @@
+//! The scene as `rgba32ui` texels for storage images: the layout the path-tracing shader reads
+//! (`shaders/include/scene_texels.glsl` decodes exactly this; keep the two in sync).
+//!
+//! Why images: on lavapipe (llvmpipe), a storage-buffer load whose address differs between the
+//! 8 SIMD lanes is a scalar loop over the lanes with a bounds check per component, while an
+//! image load is a straight-line gather. A 32-byte record costs about 4x less from an image
+//! (measured), and BVH traversal and shading are dominated by such loads.
+//!
+//! Every array becomes a list of texels (four `u32`, floats as their bits); element `i` of an
+//! array with `N` texels per element occupies texels `N*i .. N*i + N`. Texel `k` lives at
+//! `(k % SCENE_TEXELS_WIDTH, k / SCENE_TEXELS_WIDTH)` of its image.
+//!
+//! | array      | texels | layout                                                               |
+//! |------------|--------|----------------------------------------------------------------------|
+//! | BVH node   | 2      | `(min.xyz, left_first)`, `(max.xyz, count)` (= [`BvhNode`])          |
+//! | triangle   | 3      | `(v0.xyz, e1.x)`, `(e1.yz, e2.xy)`, `(e2.z, material, light, 0)`     |
+//! | shading    | 4      | `(n0.xyz, uv0.x)`, `(n1.xyz, uv0.y)`, `(n2.xyz, uv1.x)`, `(uv1.y, uv2.xy, 0)` |
+//! | material   | 3      | `(base.rgb, metallic)`, `(emissive.rgb, roughness)`, `(flags, base_tex, emissive_tex, mr_tex)` |
+//! | light      | 1      | `(triangle, area, pdf, cdf)` (= [`GpuLight`])                        |
+//! | texture    | 1      | `(offset, width, height, flags)` (= [`GpuTexture`])                  |
+//! | texel      | 1/4    | four packed RGBA8 texels of the atlas per image texel                |
+//!
+//! `material` and `light` of a triangle are its [`TriangleShading`] fields (the light index as
+//! the bits of the `i32`, -1 = none); the base colour's alpha is not stored (unused).
+
+use super::*;
+
+/// log2 of the width of every scene image, in texels.
+pub const SCENE_TEXELS_WIDTH_LOG2: u32 = 12;
+/// Width of every scene image, in texels (rows are filled completely but the last).
+pub const SCENE_TEXELS_WIDTH: u32 = 1 << SCENE_TEXELS_WIDTH_LOG2;
+/// Texels per element of each array.
+pub const NODE_TEXELS: u32 = 2;
+pub const TRIANGLE_TEXELS: u32 = 3;
+pub const SHADING_TEXELS: u32 = 4;
+pub const MATERIAL_TEXELS: u32 = 3;
+pub const LIGHT_TEXELS: u32 = 1;
+pub const TEXTURE_TEXELS: u32 = 1;
+/// Atlas texels (RGBA8 words) per image texel.
+pub const ATLAS_WORDS_PER_TEXEL: u32 = 4;
+
+/// One image texel.
+pub type Texel = [u32; 4];
+
+/// One array of texels and the image extent that holds it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TexelArray {
+    /// Name for the image ("scene.bvh_nodes").
+    pub name: &'static str,
+    /// Never empty (an empty array is one zeroed texel, or an empty box for BVH nodes).
+    pub texels: Vec<Texel>,
+}
+
+impl TexelArray {
+    /// Image size `(width, height)`: [`SCENE_TEXELS_WIDTH`] wide (narrower if shorter).
+    pub fn extent(&self) -> (u32, u32) {
+        let n = self.texels.len() as u32;
+        (n.min(SCENE_TEXELS_WIDTH), n.div_ceil(SCENE_TEXELS_WIDTH))
+    }
+
+    /// The texels padded to whole image rows, ready for a tightly packed upload.
+    pub fn padded(&self) -> Vec<Texel> {
+        let (w, h) = self.extent();
+        let mut v = self.texels.clone();
+        v.resize((w * h) as usize, [0; 4]);
+        v
+    }
+}
+
+/// The scene in texels, one array per image, in binding order of the trace shader.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneTexels {
+    pub nodes: TexelArray,
+    pub triangles: TexelArray,
+    pub shading: TexelArray,
+    pub materials: TexelArray,
+    pub textures: TexelArray,
+    pub texels: TexelArray,
+    pub lights: TexelArray,
+}
+
+impl SceneTexels {
+    /// The arrays in binding order (nodes, triangles, shading, materials, textures, texels,
+    /// lights).
+    pub fn arrays(&self) -> [&TexelArray; 7] {
+        [
+            &self.nodes,
+            &self.triangles,
+            &self.shading,
+            &self.materials,
+            &self.textures,
+            &self.texels,
+            &self.lights,
+        ]
+    }
+
+    /// The largest image side any array needs (must fit the device's maxImageDimension2D).
+    pub fn max_extent(&self) -> u32 {
+        self.arrays()
+            .iter()
+            .map(|a| {
+                let (w, h) = a.extent();
+                w.max(h)
+            })
+            .max()
+            .unwrap_or(1)
+    }
+}
+
+fn f(x: f32) -> u32 {
+    x.to_bits()
+}
+
+fn array(name: &'static str, mut texels: Vec<Texel>) -> TexelArray {
+    if texels.is_empty() {
+        texels.push([0; 4]);
+    }
+    TexelArray { name, texels }
+}
+
+impl SceneGpu {
+    /// The scene in the texel layout of the module documentation.
+    pub fn texels(&self) -> SceneTexels {
+        let nodes: Vec<Texel> = if self.nodes.is_empty() {
+            let e = BvhNode::EMPTY;
+            node_texels(&e).to_vec()
+        } else {
+            self.nodes.iter().flat_map(node_texels).collect()
+        };
+        let triangles = self
+            .triangles
+            .iter()
+            .zip(&self.shading)
+            .flat_map(|(t, s)| {
+                [
+                    [f(t.v0.x), f(t.v0.y), f(t.v0.z), f(t.e1.x)],
+                    [f(t.e1.y), f(t.e1.z), f(t.e2.x), f(t.e2.y)],
+                    [f(t.e2.z), s.material, s.light as u32, 0],
+                ]
+            })
+            .collect();
+        let shading = self
+            .shading
+            .iter()
+            .flat_map(|s| {
+                [
+                    [f(s.n0.x), f(s.n0.y), f(s.n0.z), f(s.uv0.x)],
+                    [f(s.n1.x), f(s.n1.y), f(s.n1.z), f(s.uv0.y)],
+                    [f(s.n2.x), f(s.n2.y), f(s.n2.z), f(s.uv1.x)],
+                    [f(s.uv1.y), f(s.uv2.x), f(s.uv2.y), 0],
+                ]
+            })
+            .collect();
+        let materials = self
+            .materials
+            .iter()
+            .flat_map(|m| {
+                let c = m.base_color;
+                [
+                    [f(c[0]), f(c[1]), f(c[2]), f(m.metallic)],
+                    [
+                        f(m.emissive.x),
+                        f(m.emissive.y),
+                        f(m.emissive.z),
+                        f(m.roughness),
+                    ],
+                    [
+                        m.flags,
+                        m.base_color_tex as u32,
+                        m.emissive_tex as u32,
+                        m.mr_tex as u32,
+                    ],
+                ]
+            })
+            .collect();
+        let lights = self
+            .lights
+            .iter()
+            .map(|l| [l.triangle, f(l.area), f(l.pdf), f(l.cdf)])
+            .collect();
+        let textures = self
+            .textures
+            .iter()
+            .map(|t| [t.offset, t.width, t.height, t.flags])
+            .collect();
+        let texels = self
+            .texels
+            .chunks(ATLAS_WORDS_PER_TEXEL as usize)
+            .map(|c| {
+                let mut t = [0; 4];
+                t[..c.len()].copy_from_slice(c);
+                t
+            })
+            .collect();
+        SceneTexels {
+            nodes: array("scene.bvh_nodes", nodes),
+            triangles: array("scene.bvh_triangles", triangles),
+            shading: array("scene.triangle_shading", shading),
+            materials: array("scene.materials", materials),
+            textures: array("scene.textures", textures),
+            texels: array("scene.texels", texels),
+            lights: array("scene.lights", lights),
+        }
+    }
+}
+
+fn node_texels(n: &BvhNode) -> [Texel; 2] {
+    [
+        [
+            f(n.aabb_min.x),
+            f(n.aabb_min.y),
+            f(n.aabb_min.z),
+            n.left_first,
+        ],
+        [f(n.aabb_max.x), f(n.aabb_max.y), f(n.aabb_max.z), n.count],
+    ]
+}
+
+// The texel counts above are what the closures emit.
+const _: () = {
+    assert!(NODE_TEXELS == 2 && TRIANGLE_TEXELS == 3 && SHADING_TEXELS == 4);
+    assert!(MATERIAL_TEXELS == 3 && LIGHT_TEXELS == 1 && TEXTURE_TEXELS == 1);
+    assert!(SCENE_TEXELS_WIDTH.is_power_of_two());
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unf(x: u32) -> f32 {
+        f32::from_bits(x)
+    }
+
+    #[test]
+    fn texels_decode_to_the_gpu_structs() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/scenes");
+        let scene = crate::Scene::load(format!("{dir}/textured.gltf")).unwrap();
+        let g = SceneGpu::build(&scene);
+        let t = g.texels();
+        assert_eq!(t.nodes.texels.len(), g.nodes.len() * NODE_TEXELS as usize);
+        for (i, n) in g.nodes.iter().enumerate() {
+            let a = t.nodes.texels[2 * i];
+            let b = t.nodes.texels[2 * i + 1];
+            assert_eq!(Vec3::new(unf(a[0]), unf(a[1]), unf(a[2])), n.aabb_min);
+            assert_eq!(Vec3::new(unf(b[0]), unf(b[1]), unf(b[2])), n.aabb_max);
+            assert_eq!((a[3], b[3]), (n.left_first, n.count));
+        }
+        for (i, (tri, s)) in g.triangles.iter().zip(&g.shading).enumerate() {
+            let k = TRIANGLE_TEXELS as usize * i;
+            let [a, b, c] = [0, 1, 2].map(|j| t.triangles.texels[k + j]);
+            assert_eq!(Vec3::new(unf(a[0]), unf(a[1]), unf(a[2])), tri.v0);
+            assert_eq!(Vec3::new(unf(a[3]), unf(b[0]), unf(b[1])), tri.e1);
+            assert_eq!(Vec3::new(unf(b[2]), unf(b[3]), unf(c[0])), tri.e2);
+            assert_eq!((c[1], c[2] as i32), (s.material, s.light));
+            let k = SHADING_TEXELS as usize * i;
+            let [p, q, r, w] = [0, 1, 2, 3].map(|j| t.shading.texels[k + j]);
+            assert_eq!(Vec3::new(unf(p[0]), unf(p[1]), unf(p[2])), s.n0);
+            assert_eq!(Vec3::new(unf(q[0]), unf(q[1]), unf(q[2])), s.n1);
+            assert_eq!(Vec3::new(unf(r[0]), unf(r[1]), unf(r[2])), s.n2);
+            assert_eq!(Vec2::new(unf(p[3]), unf(q[3])), s.uv0);
+            assert_eq!(Vec2::new(unf(r[3]), unf(w[0])), s.uv1);
+            assert_eq!(Vec2::new(unf(w[1]), unf(w[2])), s.uv2);
+        }
+        for (i, m) in g.materials.iter().enumerate() {
+            let [a, b, c] = [0, 1, 2].map(|j| t.materials.texels[3 * i + j]);
+            assert_eq!([unf(a[0]), unf(a[1]), unf(a[2])], m.base_color[..3]);
+            assert_eq!((unf(a[3]), unf(b[3])), (m.metallic, m.roughness));
+            assert_eq!(Vec3::new(unf(b[0]), unf(b[1]), unf(b[2])), m.emissive);
+            assert_eq!(
+                [c[0], c[1], c[2], c[3]],
+                [
+                    m.flags,
+                    m.base_color_tex as u32,
+                    m.emissive_tex as u32,
+                    m.mr_tex as u32
+                ]
+            );
+        }
+        assert_eq!(t.lights.texels.len(), g.lights.len());
+        for (l, x) in g.lights.iter().zip(&t.lights.texels) {
+            assert_eq!(
+                *x,
+                [
+                    l.triangle,
+                    l.area.to_bits(),
+                    l.pdf.to_bits(),
+                    l.cdf.to_bits()
+                ]
+            );
+        }
+        assert!(!g.textures.is_empty() && !g.lights.is_empty());
+        for (x, y) in g.textures.iter().zip(&t.textures.texels) {
+            assert_eq!(*y, [x.offset, x.width, x.height, x.flags]);
+        }
+        for (k, w) in g.texels.iter().enumerate() {
+            assert_eq!(t.texels.texels[k / 4][k % 4], *w);
+        }
+    }
+
+    #[test]
+    fn extents_wrap_rows_and_pad() {
+        let a = array("a", vec![[1; 4]; SCENE_TEXELS_WIDTH as usize + 3]);
+        assert_eq!(a.extent(), (SCENE_TEXELS_WIDTH, 2));
+        let p = a.padded();
+        assert_eq!(p.len(), 2 * SCENE_TEXELS_WIDTH as usize);
+        assert_eq!(p[SCENE_TEXELS_WIDTH as usize + 2], [1; 4]);
+        assert_eq!(p[SCENE_TEXELS_WIDTH as usize + 3], [0; 4]);
+        let small = array("s", vec![]);
+        assert_eq!((small.extent(), small.texels.len()), ((1, 1), 1));
+        // Atlas words pack four to a texel, the last one zero-padded.
+        let g = SceneGpu {
+            texels: vec![1, 2, 3, 4, 5],
+            ..Default::default()
+        };
+        assert_eq!(g.texels().texels.texels, vec![[1, 2, 3, 4], [5, 0, 0, 0]]);
+    }
+}

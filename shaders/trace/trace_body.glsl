@@ -1,0 +1,65 @@
+// Path-tracing pass: one invocation per pixel and one path per dispatch (the host dispatches
+// spp times per frame), software BVH traversal over the scene images, glTF BRDF, next-event
+// estimation on emissive triangles with MIS (power heuristic) against BRDF sampling, constant
+// environment, Russian roulette. All randomness comes from the pixel's seed in the seed buffer
+// (see sample_dim), so moving seeds moves whole estimates.
+// Output: the raw per-frame estimate (rgb, Rec.709 luminance) that the sorting pass ranks.
+//
+// Included by the pipeline variants trace/trace.comp (everything chosen at run time) and
+// trace/variants/*.comp, which fix before the include:
+//   TRACE_SAMPLER_KIND  SAMPLER_WHITE / SAMPLER_SOBOL / SAMPLER_R2, or P.sampler_kind (the
+//                       TraceParams field: chosen at run time)
+//   TRACE_MASK          1: blue-noise mask modes (TraceParams::mask_mode) supported; 0: mask off
+//   TRACE_TEXTURES      1: material textures and uvs; 0: texture indices ignored (no textures)
+// The variants differ only in dead code: llvmpipe runs both sides of every branch, so
+// branches that a method or scene never takes are compiled out (crates/render picks the
+// variant; see passes.rs).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+#include "generated/scene.glsl"
+#include "generated/params.glsl"
+#include "sampling.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(push_constant, scalar) uniform Push { TraceParams pc; };
+
+// The scene (texel layout: crates/scene/src/gpu/texels.rs, scene_texels.glsl).
+layout(set = 0, binding = 0, rgba32ui) readonly uniform uimage2D scene_nodes;
+layout(set = 0, binding = 1, rgba32ui) readonly uniform uimage2D scene_triangles;
+layout(set = 0, binding = 2, rgba32ui) readonly uniform uimage2D scene_shading;
+layout(set = 0, binding = 3, rgba32ui) readonly uniform uimage2D scene_materials;
+layout(set = 0, binding = 4, rgba32ui) readonly uniform uimage2D scene_textures;
+layout(set = 0, binding = 5, rgba32ui) readonly uniform uimage2D scene_texels;
+layout(set = 0, binding = 6, rgba32ui) readonly uniform uimage2D scene_lights;
+layout(set = 0, binding = 7, scalar) readonly buffer Info { SceneInfo scene; };
+layout(set = 0, binding = 8, scalar) readonly buffer Seeds { uint seeds[]; };
+layout(set = 0, binding = 9, scalar) readonly buffer Mask { uint mask[]; };
+layout(set = 0, binding = 10, scalar) buffer Estimate { vec4 estimate[]; };
+
+#include "scene_texels.glsl"
+#include "bvh.glsl"
+#include "brdf.glsl"
+#include "textures.glsl"
+#include "path.glsl"
+
+void main() {
+    // Uniform data first, outside control flow (no early return: it would put the rest of
+    // the shader under a lane mask).
+    P = pc;
+    g_light_count = scene.light_count;
+    g_environment = scene.environment;
+    // Keeps every binding in every variant, so all variants share one binding table.
+    int keep = imageSize(scene_textures).x + imageSize(scene_texels).x + mask.length();
+    uvec2 px = gl_GlobalInvocationID.xy;
+    bool inside = px.x < P.width && px.y < P.height;
+    px = min(px, uvec2(P.width, P.height) - 1u);
+    uint seed = seeds[px.y * P.stride + px.x];
+    seed = (P.flags & TRACE_FLAG_SALT_FRAME) != 0u ? hash3(seed, P.frame, 0x5a17u) : seed;
+    uint s0 = P.sample_index, count = P.sample_count;
+    vec3 l = trace_paths(px, seed, s0, count) / float(count);
+    // Running mean over this frame's dispatches (see TraceParams::sample_index).
+    uint o = px.y * P.width + px.x;
+    vec3 prev = estimate[o].rgb;
+    l = s0 > 0u ? prev + (l - prev) * (float(count) / float(s0 + count)) : l;
+    if (inside && keep != -1) estimate[o] = vec4(l, luminance(l));
+}
