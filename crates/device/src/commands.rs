@@ -3,7 +3,7 @@
 //! a lost device can be blamed on a named pass, as kajiya does).
 use crate::device::Device;
 use crate::error::{DeviceError, Result, VkContext};
-use crate::memory::{Buffer, Image, color_range};
+use crate::memory::{Buffer, Image};
 use crate::pipeline::{BindingKind, ComputePipeline};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -315,92 +315,6 @@ impl Recorder {
                 );
             }
             d.cmd_dispatch(self.cmd, groups[0], groups[1], groups[2]);
-        }
-        self.barrier();
-        Ok(())
-    }
-
-    /// Copies `size` bytes (whole `src` when `None`) from `src` to `dst`.
-    pub fn copy_buffer(&mut self, src: &Buffer, dst: &Buffer, size: Option<u64>) -> Result<()> {
-        self.check_recording()?;
-        let size = size.unwrap_or(src.size.min(dst.size));
-        let region = vk::BufferCopy {
-            src_offset: 0,
-            dst_offset: 0,
-            size,
-        };
-        // SAFETY: recording; both buffers are TRANSFER capable.
-        unsafe {
-            self.dev
-                .raw()
-                .cmd_copy_buffer(self.cmd, src.raw, dst.raw, &[region])
-        };
-        self.barrier();
-        Ok(())
-    }
-
-    /// Fills a whole buffer with a repeated u32.
-    pub fn fill_buffer(&mut self, buf: &Buffer, value: u32) -> Result<()> {
-        self.check_recording()?;
-        // SAFETY: recording.
-        unsafe {
-            self.dev
-                .raw()
-                .cmd_fill_buffer(self.cmd, buf.raw, 0, vk::WHOLE_SIZE, value)
-        };
-        self.barrier();
-        Ok(())
-    }
-
-    /// Moves a fresh image from UNDEFINED to GENERAL (contents discarded).
-    pub fn init_image(&mut self, img: &Image) -> Result<()> {
-        self.check_recording()?;
-        let b = vk::ImageMemoryBarrier::default()
-            .image(img.raw)
-            .old_layout(vk::ImageLayout::UNDEFINED)
-            .new_layout(vk::ImageLayout::GENERAL)
-            .src_access_mask(vk::AccessFlags::empty())
-            .dst_access_mask(vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE)
-            .subresource_range(color_range());
-        // SAFETY: recording.
-        unsafe {
-            self.dev.raw().cmd_pipeline_barrier(
-                self.cmd,
-                vk::PipelineStageFlags::TOP_OF_PIPE,
-                vk::PipelineStageFlags::ALL_COMMANDS,
-                vk::DependencyFlags::empty(),
-                &[],
-                &[],
-                &[b],
-            );
-        }
-        Ok(())
-    }
-
-    /// Copies an image (in GENERAL layout) into a buffer, tightly packed.
-    pub fn copy_image_to_buffer(&mut self, img: &Image, dst: &Buffer) -> Result<()> {
-        self.check_recording()?;
-        let region = vk::BufferImageCopy::default()
-            .image_subresource(vk::ImageSubresourceLayers {
-                aspect_mask: vk::ImageAspectFlags::COLOR,
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: 1,
-            })
-            .image_extent(vk::Extent3D {
-                width: img.width,
-                height: img.height,
-                depth: 1,
-            });
-        // SAFETY: recording; image is in GENERAL.
-        unsafe {
-            self.dev.raw().cmd_copy_image_to_buffer(
-                self.cmd,
-                img.raw,
-                vk::ImageLayout::GENERAL,
-                dst.raw,
-                &[region],
-            );
         }
         self.barrier();
         Ok(())

@@ -20,6 +20,7 @@ mod pipeline;
 mod present;
 mod surface;
 mod swapchain;
+mod transfer;
 
 pub use ash::{self, vk};
 pub use commands::{PassTime, Recorder, Res};
