@@ -118,7 +118,8 @@ fn check(gpu: &mut Gpu, name: &str, scene: &Scene, n: u32) {
 #[test]
 fn gpu_traversal_matches_cpu_on_bundled_scenes_and_a_soup() {
     let mut gpu = Gpu::new();
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+    let root = std::env::var_os("CARGO_MANIFEST_DIR").expect("run under cargo");
+    let dir = std::path::Path::new(&root).join("../assets/scenes");
     for name in ["cornell-box", "textured", "edges"] {
         let scene = Scene::load(dir.join(format!("{name}.gltf"))).unwrap();
         check(&mut gpu, name, &scene, 30_000);

@@ -9,7 +9,7 @@ use blueshift_tools::quality::{mask_quality, seam_ratio, temporal_lf};
 use blueshift_tools::retarget::{Problem, exact};
 
 fn assets() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets")
+    Path::new(&std::env::var_os("CARGO_MANIFEST_DIR").expect("run under cargo")).join("../assets")
 }
 
 #[test]

@@ -301,10 +301,10 @@ mod glsl_sync {
     /// The literals in bvh.glsl must be the Rust constants.
     #[test]
     fn bvh_glsl_constants_match() {
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../shaders/include/bvh.glsl"
-        );
+        // Runtime variable: `cargo test` sets it to this checkout even when the binary was
+        // built from another checkout sharing the target dir.
+        let root = std::env::var("CARGO_MANIFEST_DIR").unwrap();
+        let path = format!("{root}/../../shaders/include/bvh.glsl");
         let src = std::fs::read_to_string(path).unwrap();
         let value = |name: &str| -> f32 {
             let line = src

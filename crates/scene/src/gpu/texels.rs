@@ -233,7 +233,8 @@ mod tests {
 
     #[test]
     fn texels_decode_to_the_gpu_structs() {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/scenes");
+        let root = std::env::var("CARGO_MANIFEST_DIR").unwrap();
+        let dir = format!("{root}/../../assets/scenes");
         let scene = crate::Scene::load(format!("{dir}/textured.gltf")).unwrap();
         let g = SceneGpu::build(&scene);
         let t = g.texels();

@@ -17,6 +17,7 @@
 //! extensions, undecodable images, ...) is skipped with one warning per kind in
 //! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
 
+mod guard;
 mod material;
 mod precheck;
 mod primitive;
@@ -110,29 +111,7 @@ pub(crate) fn load_bytes(
     options: &LoadOptions,
 ) -> Result<Scene> {
     let path = name;
-    // The gltf crate can still panic on some hostile inputs our own checks miss (its validator
-    // indexes arrays with unchecked references); never let that escape as a panic.
-    install_quiet_panic_hook();
-    QUIET_PANICS.with(|q| q.set(true));
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        load_inner(path, bytes, base)
-    }));
-    QUIET_PANICS.with(|q| q.set(false));
-    let mut scene = match result {
-        Ok(r) => r?,
-        Err(payload) => {
-            let message = payload
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_else(|| "panic".into());
-            let location = PANIC_LOCATION.with(|l| l.take()).unwrap_or_default();
-            return Err(SceneError::Internal {
-                path: path.to_path_buf(),
-                message: format!("{message} (at {location})"),
-            });
-        }
-    };
+    let mut scene = guard::catch_panics(path, || load_inner(path, bytes, base))?;
     if let Some(env) = options.environment {
         scene.environment = env;
     }
@@ -142,34 +121,6 @@ pub(crate) fn load_bytes(
         }
     }
     Ok(scene)
-}
-
-thread_local! {
-    static QUIET_PANICS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-    /// `file:line` of the last quiet panic (fuzz targets use it to tell our bugs from the
-    /// glTF reader's).
-    static PANIC_LOCATION: std::cell::RefCell<Option<String>> =
-        const { std::cell::RefCell::new(None) };
-}
-
-/// Wraps the process panic hook once so that a panic caught inside [`load`] on this thread is
-/// not printed (it becomes [`SceneError::Internal`]); every other panic goes to the previous
-/// hook unchanged.
-fn install_quiet_panic_hook() {
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        let previous = std::panic::take_hook();
-        std::panic::set_hook(Box::new(move |info| {
-            if QUIET_PANICS.with(|q| q.get()) {
-                let at = info
-                    .location()
-                    .map(|l| format!("{}:{}", l.file(), l.line()));
-                PANIC_LOCATION.with(|l| *l.borrow_mut() = at);
-            } else {
-                previous(info);
-            }
-        }));
-    });
 }
 
 fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
