@@ -41,6 +41,7 @@ pub fn run(gpu: &GpuOpts, args: &InfoArgs) -> Result<()> {
         "maxMemoryAllocationSize: {} MiB",
         i.max_memory_allocation_size >> 20
     );
+    println!("memory budget:       {} MiB", i.memory_budget >> 20);
     println!(
         "compute: {} invocations/group, {:?} groups, {} KiB shared",
         i.max_compute_work_group_invocations,

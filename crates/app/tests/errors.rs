@@ -276,6 +276,27 @@ fn device_lost_names_the_pass() {
 }
 
 #[test]
+fn out_of_memory_names_the_resource_or_the_passes() {
+    let c = Case::new();
+    // A real budget check (the device's largest heap, lowered here): the first allocation
+    // that does not fit is named, before any work is done.
+    let o = c.render(&[], &[("BLUESHIFT_MEMORY_BUDGET", "300000")]);
+    c.expect_error(
+        &o,
+        &[
+            "out of memory allocating '",
+            "the device memory budget is 300000 bytes",
+        ],
+    );
+    // A submission the driver could not run: the error lists the passes in it.
+    let o = c.render(&[], &[("BLUESHIFT_TEST_SUBMIT_OOM", "sort")]);
+    c.expect_error(
+        &o,
+        &["out of memory while running pass(es)", "trace", "sort"],
+    );
+}
+
+#[test]
 fn other_bad_arguments_are_errors_not_panics() {
     let c = Case::new();
     let o = c.render(&["--method", "nope"], &[]);

@@ -49,6 +49,9 @@ pub struct Recorder {
     /// Testing hook (`BLUESHIFT_TEST_DEVICE_LOST=PASS`): a submission containing pass PASS
     /// reports a lost device, as if the GPU hung in PASS (markers stop after it).
     lose_in_pass: Option<String>,
+    /// Testing hook (`BLUESHIFT_TEST_SUBMIT_OOM=PASS`): a submission containing pass PASS
+    /// reports running out of device memory, through the same error path as the driver's.
+    oom_in_pass: Option<String>,
     /// The hook's pass was recorded in this submission; later passes write no marker.
     markers_frozen: bool,
 }
@@ -114,6 +117,9 @@ impl Recorder {
                 open_pass: None,
                 recording: false,
                 lose_in_pass: std::env::var("BLUESHIFT_TEST_DEVICE_LOST")
+                    .ok()
+                    .filter(|p| !p.is_empty()),
+                oom_in_pass: std::env::var("BLUESHIFT_TEST_SUBMIT_OOM")
                     .ok()
                     .filter(|p| !p.is_empty()),
                 markers_frozen: false,
@@ -358,6 +364,13 @@ impl Recorder {
                         .vk("vkWaitForFences")
                 })
                 .and_then(|_| d.reset_fences(&[self.fence]).vk("vkResetFences"))
+        };
+        let run = match (&self.oom_in_pass, run) {
+            (Some(p), Ok(())) if self.passes.contains(p) => Err(DeviceError::Vulkan {
+                what: "vkQueueSubmit, simulated by BLUESHIFT_TEST_SUBMIT_OOM".into(),
+                result: vk::Result::ERROR_OUT_OF_DEVICE_MEMORY,
+            }),
+            (_, run) => run,
         };
         match &run {
             Err(DeviceError::Vulkan { what, result })

@@ -27,6 +27,10 @@ pub struct DeviceInfo {
     pub driver_info: String,
     pub max_storage_buffer_range: u64,
     pub max_memory_allocation_size: u64,
+    /// Bytes Blueshift may allocate in all: the largest memory heap (lavapipe: system RAM), or
+    /// less with `BLUESHIFT_MEMORY_BUDGET`. Checked before every allocation so running out is
+    /// an error naming the resource rather than a driver abort or the OOM killer.
+    pub memory_budget: u64,
     pub max_compute_work_group_invocations: u32,
     pub max_compute_work_group_count: [u32; 3],
     pub max_compute_shared_memory_size: u32,
@@ -171,6 +175,9 @@ impl Device {
         let mut info = query_info(instance, pd);
         if let Some(limit) = env_limit("BLUESHIFT_MAX_STORAGE_BUFFER_RANGE")? {
             info.max_storage_buffer_range = info.max_storage_buffer_range.min(limit);
+        }
+        if let Some(limit) = env_limit("BLUESHIFT_MEMORY_BUDGET")? {
+            info.memory_budget = info.memory_budget.min(limit);
         }
         // SAFETY: plain query on a handle from the enumeration.
         let families = unsafe { raw_inst.get_physical_device_queue_family_properties(pd) };
@@ -363,6 +370,14 @@ fn query_info(instance: &Instance, pd: vk::PhysicalDevice) -> DeviceInfo {
         raw.enumerate_device_extension_properties(pd)
             .unwrap_or_default()
     };
+    // SAFETY: plain query on a valid handle.
+    let mem = unsafe { raw.get_physical_device_memory_properties(pd) };
+    let memory_budget = mem
+        .memory_heaps_as_slice()
+        .iter()
+        .map(|h| h.size)
+        .max()
+        .unwrap_or(0);
     let p = props2.properties;
     let f = features2.features;
     let l = p.limits;
@@ -384,6 +399,7 @@ fn query_info(instance: &Instance, pd: vk::PhysicalDevice) -> DeviceInfo {
         driver_info: cstr_field(&driver.driver_info),
         max_storage_buffer_range: l.max_storage_buffer_range as u64,
         max_memory_allocation_size: m3.max_memory_allocation_size,
+        memory_budget,
         max_compute_work_group_invocations: l.max_compute_work_group_invocations,
         max_compute_work_group_count: l.max_compute_work_group_count,
         max_compute_shared_memory_size: l.max_compute_shared_memory_size,

@@ -26,6 +26,25 @@ fn allocate(
     location: MemoryLocation,
     linear: bool,
 ) -> Result<Allocation> {
+    let info = dev.info();
+    let out_of_memory = |detail: String| DeviceError::OutOfMemory {
+        name: name.to_string(),
+        bytes: requirements.size,
+        detail,
+    };
+    if requirements.size > info.max_memory_allocation_size {
+        return Err(out_of_memory(format!(
+            "over the device's maxMemoryAllocationSize of {} bytes",
+            info.max_memory_allocation_size
+        )));
+    }
+    let in_use = dev.allocated_bytes();
+    if in_use.saturating_add(requirements.size) > info.memory_budget {
+        return Err(out_of_memory(format!(
+            "{in_use} bytes are in use and the device memory budget is {} bytes; use a smaller resolution or scene",
+            info.memory_budget
+        )));
+    }
     let mut guard = dev.allocator()?;
     let alloc = guard
         .as_mut()
