@@ -3,7 +3,10 @@
 // to the position of the k-th smallest mask value. One invocation per block ranks by counting
 // over (key, in-block index), so ties are deterministic; no shared memory and no barriers
 // (barriers are expensive on CPU Vulkan implementations, and a block is at most 64 pixels).
-// In place: blocks are disjoint. CPU twin: crates/permute/src/cpu.rs sort_seeds_cpu.
+// Ranking is within classes (classify_pixels: surfaces of the block; all 0 for the paper's
+// method): pixels and mask values both sort on (class, key, index), so the k-th pixel and the
+// k-th mask position share a class. In place: blocks are disjoint.
+// CPU twin: crates/permute/src/cpu.rs sort_seeds_cpu.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #include "generated/params.glsl"
@@ -13,8 +16,14 @@ layout(push_constant, scalar) uniform Push { SortParams p; };
 layout(set = 0, binding = 0, scalar) readonly buffer Estimate { vec4 estimate[]; };  // rgb + luminance
 layout(set = 0, binding = 1, scalar) readonly buffer Mask { uint mask[]; };          // N*N ranks
 layout(set = 0, binding = 2, scalar) buffer Seeds { uint seeds[]; };                 // padded
+layout(set = 0, binding = 3, scalar) readonly buffer Classes { uint classes[]; };     // W*H
 
 uint sort_key(float l) { return l > 0.0 ? floatBitsToUint(l) : 0u; }
+
+// (class, key, index) of b orders before that of a.
+bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
+    return cb < ca || (cb == ca && (kb < ka || (kb == ka && b < a)));
+}
 
 void main() {
     uint B = p.block;
@@ -23,7 +32,7 @@ void main() {
     if (block >= blocks_x * ((p.height + B - 1u) / B)) return;
     uvec2 origin = uvec2(block % blocks_x, block / blocks_x) * B;
     // Visible pixels of the block in row-major order: (x, y) packed as y * B + x.
-    uint cell[64], lum_key[64], mask_key[64], seed[64];
+    uint cell[64], lum_key[64], mask_key[64], seed[64], cls[64];
     uint n = 0u;
     for (uint k = 0u; k < B * B; ++k) {
         uvec2 px = origin + uvec2(k % B, k / B);
@@ -33,18 +42,19 @@ void main() {
         uvec2 m = (px + uvec2(p.offset_x, p.offset_y)) % p.mask_size;
         mask_key[n] = mask[m.y * p.mask_size + m.x];
         seed[n] = seeds[px.y * p.stride + px.x];
+        cls[n] = classes[px.y * p.width + px.x];
         n++;
     }
     // pos_of_mask_rank[r] = the visible pixel holding the r-th smallest mask value.
     uint pos_of_mask_rank[64];
     for (uint a = 0u; a < n; ++a) {
         uint r = 0u;
-        for (uint b = 0u; b < n; ++b) r += uint(mask_key[b] < mask_key[a] || (mask_key[b] == mask_key[a] && b < a));
+        for (uint b = 0u; b < n; ++b) r += uint(before(cls[b], mask_key[b], b, cls[a], mask_key[a], a));
         pos_of_mask_rank[r] = a;
     }
     for (uint a = 0u; a < n; ++a) {
         uint r = 0u;
-        for (uint b = 0u; b < n; ++b) r += uint(lum_key[b] < lum_key[a] || (lum_key[b] == lum_key[a] && b < a));
+        for (uint b = 0u; b < n; ++b) r += uint(before(cls[b], lum_key[b], b, cls[a], lum_key[a], a));
         uint k = cell[pos_of_mask_rank[r]];
         uvec2 d = origin + uvec2(k % B, k / B);
         seeds[d.y * p.stride + d.x] = seed[a];

@@ -17,6 +17,8 @@ mod bvh;
 #[cfg(test)]
 mod headers;
 #[cfg(test)]
+mod motion;
+#[cfg(test)]
 mod permute;
 #[cfg(test)]
 mod rng;

@@ -68,6 +68,8 @@ fn gpu_frame(
 ) {
     let off = mask_offset(frame, (12, 9), sc.tile);
     let est = Buffer::from_slice(gpu.dev(), "permute.estimate", &estimate(lum)).unwrap();
+    let zeros = vec![0u32; lum.len()];
+    let classes = Buffer::from_slice(gpu.dev(), "permute.classes", &zeros).unwrap();
     let rec = gpu.rec.as_mut().unwrap();
     rec.begin().unwrap();
     rec.begin_pass("permute.sort_seeds").unwrap();
@@ -77,6 +79,7 @@ fn gpu_frame(
             &sc.sort_params(block, off).unwrap(),
             &est,
             mask,
+            &classes,
             seeds[0],
         )
         .unwrap();
@@ -138,6 +141,7 @@ fn sort_and_retarget_match_cpu_and_stay_permutations() {
                 &sc.sort_params(block, off).unwrap(),
                 &lum,
                 &mask_data,
+                &vec![0; (w * h) as usize],
                 &mut cpu,
             );
             assert_eq!(

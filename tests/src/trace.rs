@@ -186,7 +186,13 @@ fn renderer_seeds_stay_a_permutation() {
     let gpu = Gpu::new();
     let dir = default_assets_dir().join("scenes/cornell-box.gltf");
     let s = Scene::load(dir).unwrap();
-    for method in [Method::Sort, Method::SortRetarget] {
+    for method in [
+        Method::Sort,
+        Method::SortRetarget,
+        Method::SortRetargetReproject,
+        Method::SortRetargetEdges,
+        Method::SortRetargetPlus,
+    ] {
         let cfg = RenderConfig {
             bounces: 1,
             method,
@@ -195,7 +201,9 @@ fn renderer_seeds_stay_a_permutation() {
         };
         let mut r = Renderer::new(gpu.dev(), &s, &assets(), cfg).unwrap();
         let init = r.initial_seeds().to_vec();
-        for _ in 0..6 {
+        for f in 0..6 {
+            // A pan (reprojection moves seeds off screen and back in) then a still frame.
+            r.set_view_offset(((f.min(4) * 3) as f32, 0.0));
             r.render_frame().unwrap();
             assert!(blueshift_permute::is_permutation_of(
                 &r.read_seeds().unwrap(),

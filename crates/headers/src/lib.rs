@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 /// (file stem, header text) for every file in `shaders/include/generated/`.
 pub fn all() -> Vec<(&'static str, String)> {
-    use blueshift_layout::{Header, params};
+    use blueshift_layout::{Header, motion, params};
     vec![
         ("sobol", blueshift_sampling::glsl_header()),
         ("scene", blueshift_scene::glsl_header()),
@@ -25,6 +25,17 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("MASK_DIMS", params::MASK_DIMS)
                 .constant("DIMS_PER_BOUNCE", params::DIMS_PER_BOUNCE)
                 .render("params"),
+        ),
+        (
+            "motion",
+            Header::new()
+                .push::<motion::GBufferTexel>()
+                .push::<motion::MotionParams>()
+                .constant("REPROJECT_NONE", motion::REPROJECT_NONE)
+                .constant_i32("REPROJECT_MAX_MOTION", motion::REPROJECT_MAX_MOTION)
+                .constant_f32("SIMILAR_MIN_COS", motion::SIMILAR_MIN_COS)
+                .constant_f32("SIMILAR_PLANE_DISTANCE", motion::SIMILAR_PLANE_DISTANCE)
+                .render("motion"),
         ),
         (
             "view",

@@ -6,6 +6,7 @@
 //! padding: every field's offset in GLSL is the Rust `offset_of!`. The generated headers live in
 //! `shaders/include/generated/` and a test regenerates them and fails on any difference.
 
+pub mod motion;
 pub mod params;
 
 /// A Rust type with a GLSL spelling under scalar block layout.
@@ -112,6 +113,15 @@ impl Header {
     /// Adds a `const uint` shared with Rust.
     pub fn constant(mut self, name: &str, value: u32) -> Self {
         self.body += &format!("const uint {name} = {value}u;\n");
+        self
+    }
+    pub fn constant_i32(mut self, name: &str, value: i32) -> Self {
+        self.body += &format!("const int {name} = {value};\n");
+        self
+    }
+    /// A float constant, printed as the shortest decimal that parses back to the same f32.
+    pub fn constant_f32(mut self, name: &str, value: f32) -> Self {
+        self.body += &format!("const float {name} = {value:?};\n");
         self
     }
     /// The full header text for `shaders/include/generated/<file_stem>.glsl`.

@@ -9,10 +9,10 @@ pub fn sort_key(lum: f32) -> u32 {
     if lum > 0.0 { lum.to_bits() } else { 0 }
 }
 
-/// Ranks (key, in-block index) pairs: element i gets the number of elements before it.
-fn ranks(keys: &[(u32, usize)]) -> Vec<usize> {
+/// Ranks (class, key, in-block index) triples: element i gets the number of elements before it.
+fn ranks(keys: &[(u32, u32, usize)]) -> Vec<usize> {
     keys.iter()
-        .map(|a| keys.iter().filter(|b| (b.0, b.1) < (a.0, a.1)).count())
+        .map(|a| keys.iter().filter(|b| *b < a).count())
         .collect()
 }
 
@@ -21,7 +21,15 @@ fn ranks(keys: &[(u32, usize)]) -> Vec<usize> {
 ///
 /// Per block, the seed of the k-th darkest pixel moves to the position of the k-th smallest
 /// mask value; partial blocks at the screen edge sort their visible pixels among themselves.
-pub fn sort_seeds_cpu(p: &SortParams, lum: &[f32], mask: &[u32], seeds: &mut [u32]) {
+/// `classes` (per visible pixel, e.g. from classify_pixels; all equal for the paper's method):
+/// pixels and mask values rank on (class, key, index), so seeds only move within a class.
+pub fn sort_seeds_cpu(
+    p: &SortParams,
+    lum: &[f32],
+    mask: &[u32],
+    classes: &[u32],
+    seeds: &mut [u32],
+) {
     let b = p.block;
     let n = p.mask_size;
     for by in (0..p.height).step_by(b as usize) {
@@ -38,13 +46,20 @@ pub fn sort_seeds_cpu(p: &SortParams, lum: &[f32], mask: &[u32], seeds: &mut [u3
             }
             let lum_keys: Vec<_> = px
                 .iter()
-                .map(|&(x, y, i)| (sort_key(lum[(y * p.width + x) as usize]), i))
+                .map(|&(x, y, i)| {
+                    let at = (y * p.width + x) as usize;
+                    (classes[at], sort_key(lum[at]), i)
+                })
                 .collect();
             let mask_keys: Vec<_> = px
                 .iter()
                 .map(|&(x, y, i)| {
                     let (mx, my) = ((x + p.offset_x) % n, (y + p.offset_y) % n);
-                    (mask[(my * n + mx) as usize], i)
+                    (
+                        classes[(y * p.width + x) as usize],
+                        mask[(my * n + mx) as usize],
+                        i,
+                    )
                 })
                 .collect();
             let lum_rank = ranks(&lum_keys);
@@ -116,7 +131,7 @@ mod tests {
                         .map(|_| (lcg(&mut s) % 100) as f32 / 7.0)
                         .collect();
                     let p = sc.sort_params(b, mask_offset(f, (12, 9), 16)).unwrap();
-                    sort_seeds_cpu(&p, &lum, &mask, &mut seeds);
+                    sort_seeds_cpu(&p, &lum, &mask, &vec![0; (w * h) as usize], &mut seeds);
                     assert!(is_permutation_of(&seeds, &init));
                 }
             }
@@ -134,7 +149,13 @@ mod tests {
             .collect();
         let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
         let mut seeds = init.clone();
-        sort_seeds_cpu(&sc.sort_params(4, off).unwrap(), &lum, &mask, &mut seeds);
+        sort_seeds_cpu(
+            &sc.sort_params(4, off).unwrap(),
+            &lum,
+            &mask,
+            &[0; 32 * 32],
+            &mut seeds,
+        );
         assert_eq!(seeds, init);
     }
 

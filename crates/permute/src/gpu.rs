@@ -1,9 +1,11 @@
-//! The GPU passes: `permute/sort_seeds` and `permute/retarget_seeds`.
+//! The GPU passes: `permute/classify_pixels`, `permute/sort_seeds` and
+//! `permute/retarget_seeds` (seed reprojection: reproject_gpu.rs).
 use crate::{PermuteError, Result, RetargetParams, SortParams};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder};
 
 /// Pipelines of both permutation passes.
 pub struct PermutePasses {
+    classify: ComputePipeline,
     sort: ComputePipeline,
     retarget: ComputePipeline,
 }
@@ -32,6 +34,16 @@ impl PermutePasses {
                 Binding::storage(0, "estimate"),
                 Binding::storage(1, "mask"),
                 Binding::storage(2, "seeds"),
+                Binding::storage(3, "classes"),
+            ],
+            std::mem::size_of::<SortParams>(),
+        )?;
+        let classify = pipeline(
+            dev,
+            "permute/classify_pixels",
+            &[
+                Binding::storage(0, "gbuffer"),
+                Binding::storage(1, "classes"),
             ],
             std::mem::size_of::<SortParams>(),
         )?;
@@ -45,28 +57,47 @@ impl PermutePasses {
             ],
             std::mem::size_of::<RetargetParams>(),
         )?;
-        Ok(Self { sort, retarget })
+        Ok(Self {
+            classify,
+            sort,
+            retarget,
+        })
     }
 
-    /// Records the sorting pass (in place on `seeds`). `estimate` holds vec4 (rgb, luminance).
+    /// Records the sorting pass (in place on `seeds`). `estimate` holds vec4 (rgb, luminance);
+    /// `classes` one u32 per visible pixel (zeros: the paper's method; else classify_pixels).
     pub fn sort_seeds(
         &self,
         rec: &mut Recorder,
         p: &SortParams,
         estimate: &Buffer,
         mask: &Buffer,
+        classes: &Buffer,
         seeds: &Buffer,
     ) -> Result<()> {
-        if !(2..=8).contains(&p.block) {
-            return Err(PermuteError::BlockSize(p.block));
-        }
-        let blocks = p.width.div_ceil(p.block) * p.height.div_ceil(p.block);
-        let groups = [blocks.div_ceil(64), 1, 1];
         rec.dispatch(
             &self.sort,
-            &[estimate.into(), mask.into(), seeds.into()],
+            &[estimate.into(), mask.into(), seeds.into(), classes.into()],
             bytemuck::bytes_of(p),
-            groups,
+            block_groups(p)?,
+        )?;
+        Ok(())
+    }
+
+    /// Records edge-aware grouping: per block, the surface class of every visible pixel from
+    /// the G-buffer (`GBufferTexel` per visible pixel) into `classes`.
+    pub fn classify_pixels(
+        &self,
+        rec: &mut Recorder,
+        p: &SortParams,
+        gbuffer: &Buffer,
+        classes: &Buffer,
+    ) -> Result<()> {
+        rec.dispatch(
+            &self.classify,
+            &[gbuffer.into(), classes.into()],
+            bytemuck::bytes_of(p),
+            block_groups(p)?,
         )?;
         Ok(())
     }
@@ -89,4 +120,13 @@ impl PermutePasses {
         )?;
         Ok(())
     }
+}
+
+/// One invocation per block (64 per workgroup).
+fn block_groups(p: &SortParams) -> Result<[u32; 3]> {
+    if !(2..=8).contains(&p.block) {
+        return Err(PermuteError::BlockSize(p.block));
+    }
+    let blocks = p.width.div_ceil(p.block) * p.height.div_ceil(p.block);
+    Ok([blocks.div_ceil(64), 1, 1])
 }

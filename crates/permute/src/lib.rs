@@ -10,11 +10,20 @@
 //! Frame t sorts against mask M_t(p) = M((p + o_t) mod N) with o_t = t*s mod N for the integer
 //! shift s the retarget table was optimised for (never a rounded R2 value: algorithm.md).
 mod cpu;
+mod edges;
 mod gpu;
+mod reproject;
+mod reproject_gpu;
+mod similar;
 
+pub use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 pub use blueshift_layout::params::{RetargetParams, SortParams};
 pub use cpu::{retarget_seeds_cpu, sort_key, sort_seeds_cpu};
+pub use edges::classify_pixels_cpu;
 pub use gpu::PermutePasses;
+pub use reproject::{Reprojected, mean_motion, reproject_motion_cpu, reproject_seeds_cpu};
+pub use reproject_gpu::Reprojection;
+pub use similar::similar;
 
 /// Errors of the permutation passes.
 #[derive(Debug, thiserror::Error)]
@@ -86,6 +95,23 @@ impl Screen {
             offset_y: offset.1,
         }
     }
+}
+
+/// The next mask offset when the image moved by `motion` pixels: the mask moves with the
+/// image, so a seed reprojected with its surface meets the mask value the retarget table
+/// prepared it for: o' = o + s - motion (mod n).
+pub fn follow_offset(
+    offset: (u32, u32),
+    shift: (u32, u32),
+    motion: (i32, i32),
+    n: u32,
+) -> (u32, u32) {
+    let step =
+        |o: u32, s: u32, m: i32| ((o as i64 + s as i64 - m as i64).rem_euclid(n as i64)) as u32;
+    (
+        step(offset.0, shift.0, motion.0),
+        step(offset.1, shift.1, motion.1),
+    )
 }
 
 /// Mask offset of frame `frame`: exactly `frame * shift mod n` per axis.

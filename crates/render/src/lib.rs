@@ -16,13 +16,16 @@
 //! ```
 mod assets;
 mod camera_path;
+mod gbuffer;
 mod images;
 mod method;
+mod motion;
 mod passes;
 mod upload;
 
 pub use assets::{MethodAssets, default_assets_dir};
 pub use camera_path::{CameraPath, Keyframe};
+pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
 pub use method::Method;
 pub use passes::{TRACE_BINDINGS, TraceVariant};
@@ -33,7 +36,7 @@ use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
     TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
-use blueshift_permute::{PermutePasses, Screen, mask_offset};
+use blueshift_permute::{PermutePasses, Screen};
 use blueshift_sampling::Sampler;
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use passes::ImagePasses;
@@ -180,6 +183,10 @@ pub struct Renderer {
     view_offset: (f32, f32),
     frame: u64,
     accumulated: u32,
+    /// All-zero surface classes: the paper's sorting (one class per block).
+    zero_classes: Buffer,
+    /// G-buffers and reprojection state, created when a method first needs them.
+    motion: Option<motion::MotionState>,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -240,6 +247,12 @@ impl Renderer {
             view_offset: (0.0, 0.0),
             frame: 0,
             accumulated: 0,
+            zero_classes: Buffer::from_slice(
+                dev,
+                "frame.classes.zero",
+                &vec![0u32; pixels as usize],
+            )?,
+            motion: None,
             cfg,
         };
         Ok(r)
@@ -282,6 +295,9 @@ impl Renderer {
         self.current = 0;
         self.frame = 0;
         self.accumulated = 0;
+        if let Some(m) = &mut self.motion {
+            m.reset();
+        }
         Ok(())
     }
 
@@ -305,7 +321,8 @@ impl Renderer {
         Ok(())
     }
 
-    fn trace_params(&self) -> TraceParams {
+    /// The path tracer's push constants for the next frame (camera, view window, method).
+    pub fn trace_params(&self) -> TraceParams {
         let c = &self.cfg;
         let (vw, vh) = c.view_size.unwrap_or((c.width, c.height));
         let basis = self.camera.basis(vw as f32 / vh as f32);
@@ -360,7 +377,7 @@ impl Renderer {
     pub fn render_frame(&mut self) -> Result<FrameStats> {
         let tp = self.trace_params();
         let m = self.cfg.method;
-        let off = mask_offset(self.frame, self.assets.shift, self.assets.n);
+        let (off, mut passes) = self.prepare_frame(&tp)?;
         let img = ImageParams {
             width: self.cfg.width,
             height: self.cfg.height,
@@ -385,13 +402,19 @@ impl Renderer {
             &self.estimate,
         )?;
         if m.sorts() {
-            self.rec.begin_pass("sort")?;
             let sp = self.screen.sort_params(self.cfg.block, off)?;
+            self.record_classes(&tp, &sp)?;
+            self.rec.begin_pass("sort")?;
+            let classes = match (&self.motion, m.edge_aware()) {
+                (Some(st), true) => &st.classes,
+                _ => &self.zero_classes,
+            };
             self.permute.sort_seeds(
                 &mut self.rec,
                 &sp,
                 &self.estimate,
                 &self.mask,
+                classes,
                 &self.seeds[cur],
             )?;
         }
@@ -412,7 +435,7 @@ impl Renderer {
         self.rec.begin_pass("tonemap")?;
         self.image
             .tonemap(&mut self.rec, &img, &self.accum, &self.ldr)?;
-        let passes = self.rec.submit_and_wait()?;
+        passes.extend(self.rec.submit_and_wait()?);
         if m.retargets() {
             self.current = next;
         }
@@ -453,6 +476,17 @@ impl Renderer {
     pub fn read_ldr(&self) -> Result<Vec<u8>> {
         let words = self.ldr.read::<u32>()?;
         Ok(bytemuck::cast_slice(&words[..self.pixels()]).to_vec())
+    }
+    /// The G-buffer of the last frame, if the method uses one (edge-aware or reprojecting).
+    pub fn read_gbuffer(&self) -> Result<Option<Vec<blueshift_layout::motion::GBufferTexel>>> {
+        match &self.motion {
+            Some(m) => Ok(Some(m.current_gbuffer().read()?[..self.pixels()].to_vec())),
+            None => Ok(None),
+        }
+    }
+    /// The mean motion (pixels) the last reprojection measured; (0, 0) without one.
+    pub fn last_motion(&self) -> (i32, i32) {
+        self.motion.as_ref().map_or((0, 0), |m| m.last_motion)
     }
     /// The current (padded) seed buffer.
     pub fn read_seeds(&self) -> Result<Vec<u32>> {

@@ -18,10 +18,17 @@ pub enum Method {
     Sort,
     /// Sorting + retargeting (Heitz & Belcour 2019): the default.
     SortRetarget,
+    /// Ours: sorting + retargeting, and seeds follow their surface between frames (a
+    /// bijective reprojection along the G-buffer's motion; the mask moves with the image).
+    SortRetargetReproject,
+    /// Ours: sorting ranks only pixels of one surface (G-buffer classes) within a block.
+    SortRetargetEdges,
+    /// Ours: reprojection and edge-aware grouping together.
+    SortRetargetPlus,
 }
 
 impl Method {
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 10] = [
         Method::White,
         Method::WhiteFixed,
         Method::Sobol,
@@ -29,6 +36,9 @@ impl Method {
         Method::Stbn,
         Method::Sort,
         Method::SortRetarget,
+        Method::SortRetargetReproject,
+        Method::SortRetargetEdges,
+        Method::SortRetargetPlus,
     ];
 
     pub fn name(self) -> &'static str {
@@ -40,6 +50,9 @@ impl Method {
             Method::Stbn => "stbn",
             Method::Sort => "sort",
             Method::SortRetarget => "sort-retarget",
+            Method::SortRetargetReproject => "sort-retarget-reproject",
+            Method::SortRetargetEdges => "sort-retarget-edges",
+            Method::SortRetargetPlus => "sort-retarget-plus",
         }
     }
 
@@ -62,12 +75,31 @@ impl Method {
 
     /// Whether the sorting pass runs.
     pub fn sorts(self) -> bool {
-        matches!(self, Method::Sort | Method::SortRetarget)
+        self == Method::Sort || self.retargets()
     }
 
     /// Whether the retargeting pass runs.
     pub fn retargets(self) -> bool {
-        self == Method::SortRetarget
+        matches!(
+            self,
+            Method::SortRetarget
+                | Method::SortRetargetReproject
+                | Method::SortRetargetEdges
+                | Method::SortRetargetPlus
+        )
+    }
+
+    /// Whether seeds are reprojected along the motion between frames.
+    pub fn reprojects(self) -> bool {
+        matches!(
+            self,
+            Method::SortRetargetReproject | Method::SortRetargetPlus
+        )
+    }
+
+    /// Whether sorting ranks within G-buffer surface classes.
+    pub fn edge_aware(self) -> bool {
+        matches!(self, Method::SortRetargetEdges | Method::SortRetargetPlus)
     }
 }
 

@@ -1,0 +1,50 @@
+//! Structs of the G-buffer and of the passes that use it (edge-aware grouping and seed
+//! reprojection), shared with GLSL (`generated/motion.glsl`).
+use crate::gpu_struct;
+
+gpu_struct! {
+    /// One pixel of the G-buffer: the primary hit through the pixel centre.
+    pub struct GBufferTexel {
+        /// World-space hit point.
+        pub position: glam::Vec3,
+        /// Material index + 1 of the hit triangle; 0 = the ray left the scene.
+        pub material: u32,
+        /// Unit geometric normal, facing the camera.
+        pub normal: glam::Vec3,
+        /// Ray parameter of the hit (the distance: camera directions are unit length).
+        pub depth: f32,
+    }
+}
+
+gpu_struct! {
+    /// Push constants of `permute/reproject_motion`: where each pixel's surface was in the
+    /// previous frame, seen by the previous frame's camera.
+    pub struct MotionParams {
+        /// Previous camera: origin and basis as in `TraceParams` (direction through pixel p
+        /// = forward + ndc.x * right - ndc.y * up, ndc = (p + 0.5 + view_offset) / view_size
+        /// * 2 - 1).
+        pub cam_origin: glam::Vec3,
+        pub cam_forward: glam::Vec3,
+        pub cam_right: glam::Vec3,
+        pub cam_up: glam::Vec3,
+        pub view_offset: glam::Vec2,
+        pub view_size: glam::Vec2,
+        /// Visible screen.
+        pub width: u32,
+        pub height: u32,
+        /// Padded seed-buffer size.
+        pub padded_width: u32,
+        pub padded_height: u32,
+    }
+}
+
+/// "No pixel" in the reprojection buffers.
+pub const REPROJECT_NONE: u32 = 0xffff_ffff;
+/// Largest per-pixel motion (pixels per axis) counted in the mean motion that moves the
+/// mask with the image; larger moves are clamped (keeps the integer sums from overflowing).
+pub const REPROJECT_MAX_MOTION: i32 = 255;
+/// Surface similarity (G-buffer pixels a, b are one surface): same material, normals within
+/// acos(0.9) ~ 26 degrees, and a's distance from b's tangent plane under this fraction of the
+/// larger depth.
+pub const SIMILAR_MIN_COS: f32 = 0.9;
+pub const SIMILAR_PLANE_DISTANCE: f32 = 0.02;

@@ -1,0 +1,177 @@
+//! Our extensions of the paper's frame loop (algorithm.md, "Motion and failure cases"):
+//! G-buffer, edge-aware grouping (classes for the sorting pass) and bijective seed
+//! reprojection, with the mask offset following the image's mean motion.
+use crate::gbuffer::GBufferPass;
+use crate::{Renderer, Result};
+use blueshift_device::{Buffer, Device, MemoryLocation, PassTime};
+use blueshift_layout::motion::{GBufferTexel, MotionParams};
+use blueshift_layout::params::TraceParams;
+use blueshift_permute::{Reprojection, Screen, follow_offset, mask_offset, mean_motion};
+
+/// G-buffers (this and the previous frame), surface classes, reprojection scratch, and what
+/// the next frame needs to know about this one.
+pub(crate) struct MotionState {
+    pass: GBufferPass,
+    gbuffers: [Buffer; 2],
+    /// Index of the G-buffer the next frame writes.
+    next_g: usize,
+    /// Surface classes from classify_pixels.
+    pub classes: Buffer,
+    reprojection: Reprojection,
+    /// The previous frame's camera (None after a reset: nothing to reproject from).
+    prev: Option<TraceParams>,
+    /// The mask offset the previous frame sorted against.
+    prev_offset: Option<(u32, u32)>,
+    /// The last reprojection's mean motion (pixels), for reports.
+    pub last_motion: (i32, i32),
+}
+
+impl MotionState {
+    pub fn new(dev: &Device, screen: &Screen) -> Result<Self> {
+        let pixels = screen.width as u64 * screen.height as u64;
+        let g = pixels * size_of::<GBufferTexel>() as u64;
+        let gpu = MemoryLocation::GpuToCpu;
+        Ok(Self {
+            pass: GBufferPass::new(dev)?,
+            gbuffers: [
+                Buffer::new(dev, "frame.gbuffer.a", g, gpu)?,
+                Buffer::new(dev, "frame.gbuffer.b", g, gpu)?,
+            ],
+            next_g: 0,
+            classes: Buffer::new(dev, "frame.classes", pixels * 4, gpu)?,
+            reprojection: Reprojection::new(dev, screen)?,
+            prev: None,
+            prev_offset: None,
+            last_motion: (0, 0),
+        })
+    }
+
+    /// Forget the previous frame (sequence restart).
+    pub fn reset(&mut self) {
+        self.prev = None;
+        self.prev_offset = None;
+        self.last_motion = (0, 0);
+    }
+
+    /// The G-buffer written by the last frame.
+    pub fn current_gbuffer(&self) -> &Buffer {
+        &self.gbuffers[1 - self.next_g]
+    }
+}
+
+/// Motion parameters: the previous camera `prev`, the screen of `cur`.
+fn motion_params(prev: &TraceParams, cur: &TraceParams, screen: &Screen) -> MotionParams {
+    MotionParams {
+        cam_origin: prev.cam_origin,
+        cam_forward: prev.cam_forward,
+        cam_right: prev.cam_right,
+        cam_up: prev.cam_up,
+        view_offset: prev.view_offset,
+        view_size: prev.view_size,
+        width: cur.width,
+        height: cur.height,
+        padded_width: screen.stride(),
+        padded_height: screen.padded_height(),
+    }
+}
+
+impl Renderer {
+    /// Runs before the frame's main submission for the methods that need a G-buffer: writes
+    /// it, and for reprojecting methods moves the seeds along the motion since the previous
+    /// frame (own submission: the mean motion read back sets this frame's mask offset).
+    /// Returns the mask offset this frame sorts against and the passes' times.
+    pub(crate) fn prepare_frame(
+        &mut self,
+        tp: &TraceParams,
+    ) -> Result<((u32, u32), Vec<PassTime>)> {
+        let m = self.cfg.method;
+        let (shift, n) = (self.assets.shift, self.assets.n);
+        if !m.reprojects() {
+            return Ok((mask_offset(self.frame, shift, n), Vec::new()));
+        }
+        if self.motion.is_none() {
+            self.motion = Some(MotionState::new(&self.dev, &self.screen)?);
+        }
+        let Some(st) = self.motion.as_mut() else {
+            unreachable!("created above")
+        };
+        let (g_cur, g_prev) = (st.next_g, 1 - st.next_g);
+        self.rec.begin()?;
+        self.rec.begin_pass("gbuffer")?;
+        st.pass.gbuffer(
+            &mut self.rec,
+            tp,
+            &self.scene,
+            &self.images,
+            &st.gbuffers[g_cur],
+        )?;
+        let reproject = st.prev.is_some();
+        if let Some(prev) = &st.prev {
+            let mp = motion_params(prev, tp, &self.screen);
+            self.rec.begin_pass("reproject")?;
+            let r = &st.reprojection;
+            r.reproject_motion(
+                &mut self.rec,
+                &mp,
+                &st.gbuffers[g_prev],
+                &st.gbuffers[g_cur],
+            )?;
+            let (cur, next) = (self.current, 1 - self.current);
+            r.reproject_seeds(&mut self.rec, &mp, &self.seeds[cur], &self.seeds[next])?;
+        }
+        let times = self.rec.submit_and_wait()?;
+        st.next_g = g_prev;
+        st.prev = Some(*tp);
+        let offset = match st.prev_offset {
+            None => (0, 0),
+            Some(o) => {
+                let motion = if reproject {
+                    mean_motion(st.reprojection.read_motion()?)
+                } else {
+                    (0, 0)
+                };
+                st.last_motion = motion;
+                follow_offset(o, shift, motion, n)
+            }
+        };
+        if reproject {
+            self.current = 1 - self.current;
+        }
+        st.prev_offset = Some(offset);
+        Ok((offset, times))
+    }
+
+    /// For edge-aware methods: records the G-buffer (unless `prepare_frame` wrote it) and the
+    /// classes the sorting pass then reads.
+    pub(crate) fn record_classes(
+        &mut self,
+        tp: &TraceParams,
+        sort: &blueshift_permute::SortParams,
+    ) -> Result<()> {
+        let m = self.cfg.method;
+        if !m.edge_aware() {
+            return Ok(());
+        }
+        if self.motion.is_none() {
+            self.motion = Some(MotionState::new(&self.dev, &self.screen)?);
+        }
+        let Some(st) = self.motion.as_mut() else {
+            unreachable!("created above")
+        };
+        if !m.reprojects() {
+            self.rec.begin_pass("gbuffer")?;
+            st.pass.gbuffer(
+                &mut self.rec,
+                tp,
+                &self.scene,
+                &self.images,
+                &st.gbuffers[st.next_g],
+            )?;
+            st.next_g = 1 - st.next_g;
+        }
+        self.rec.begin_pass("classify")?;
+        self.permute
+            .classify_pixels(&mut self.rec, sort, st.current_gbuffer(), &st.classes)?;
+        Ok(())
+    }
+}

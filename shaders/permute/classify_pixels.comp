@@ -1,0 +1,42 @@
+#version 460
+// Edge-aware grouping: per B x B block, pixels are split into surfaces by leader clustering in
+// row-major order (a pixel joins the first earlier leader it is `similar` to, else leads a new
+// class), and the class is written per pixel as its leader's in-block index. The sorting pass
+// then ranks pixels and mask values only within a class, so a pixel across an edge never
+// trades seeds with the block's other surface. One invocation per block, like sort_seeds.
+// CPU twin: crates/permute/src/edges.rs classify_pixels_cpu.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+#include "generated/params.glsl"
+#include "generated/motion.glsl"
+#include "similar.glsl"
+
+layout(local_size_x = 64) in;
+layout(push_constant, scalar) uniform Push { SortParams p; };
+layout(set = 0, binding = 0, scalar) readonly buffer GBuffer { GBufferTexel gbuffer[]; };  // W*H
+layout(set = 0, binding = 1, scalar) writeonly buffer Classes { uint classes[]; };        // W*H
+
+void main() {
+    uint B = p.block;
+    uint blocks_x = (p.width + B - 1u) / B;
+    uint block = gl_GlobalInvocationID.x;
+    if (block >= blocks_x * ((p.height + B - 1u) / B)) return;
+    uvec2 origin = uvec2(block % blocks_x, block / blocks_x) * B;
+    uint at[64], leader[64];
+    uint n = 0u;
+    for (uint k = 0u; k < B * B; ++k) {
+        uvec2 px = origin + uvec2(k % B, k / B);
+        if (px.x >= p.width || px.y >= p.height) continue;
+        at[n++] = px.y * p.width + px.x;
+    }
+    for (uint a = 0u; a < n; ++a) {
+        GBufferTexel ga = gbuffer[at[a]];
+        uint cls = a;
+        for (uint b = 0u; b < a; ++b) {
+            bool join = cls == a && leader[b] == b && similar(ga, gbuffer[at[b]]);
+            cls = join ? b : cls;
+        }
+        leader[a] = cls;
+        classes[at[a]] = cls;
+    }
+}
