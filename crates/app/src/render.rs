@@ -121,6 +121,8 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     let mut cfg = config(&args.scene, &args.method)?;
     cfg.frame_salt = args.frame_salt;
     let path = CameraPath::parse(&args.camera_path).map_err(anyhow::Error::msg)?;
+    let (view, base_offset) = path.view_window(args.frames, cfg.width, cfg.height);
+    cfg.view_size = Some(view);
     let scene = load_scene(&args.scene.scene)?;
     let assets = load_assets(&args.scene)?;
     let dev = gpu.device()?;
@@ -135,7 +137,8 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     );
     for f in 0..args.frames {
         r.set_camera(path.camera(&base, f));
-        r.set_view_offset(path.view_offset(f));
+        let o = path.view_offset(f);
+        r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
         let stats = r.render_frame()?;
         bar.set_message(format!("trace {:.1} ms", stats.ms("trace")));
         bar.inc(1);

@@ -12,9 +12,10 @@ use std::path::Path;
 #[derive(Debug, Clone, PartialEq)]
 pub enum CameraPath {
     Static,
-    /// Image-space pan: the view window slides this many pixels per frame to the right (a
-    /// sensor shift: every point moves exactly the same amount, no parallax), so integer pans
-    /// have exact motion vectors and one wide reference image covers all frames.
+    /// Image-space pan: the view window slides this many pixels per frame to the right, and
+    /// back after [`PAN_SPAN`] px (a sensor shift: every point moves exactly the same amount,
+    /// no parallax), so integer pans have exact motion vectors and one wide reference image
+    /// covers all frames.
     Pan {
         px_per_frame: f32,
     },
@@ -37,6 +38,10 @@ pub struct Keyframe {
 struct PathFile {
     keyframes: Vec<Keyframe>,
 }
+
+/// How far (pixels) a pan travels before it turns back: far enough to show the effect of
+/// motion, short enough that the view stays on the scene (the sensor is the frame plus this).
+pub const PAN_SPAN: f32 = 64.0;
 
 impl CameraPath {
     /// Parses `static`, `pan[:PX]`, `orbit[:DEG]` or a path to a keyframe file.
@@ -115,10 +120,38 @@ impl CameraPath {
         }
     }
 
-    /// Sensor shift (pixels) at `frame`: non-zero only for pans.
+    /// The nominal view (sensor) size for a `frames`-frame sequence of `width x height`
+    /// frames, and where frame 0's window sits on it. A pan sweeps the middle band of a square
+    /// sensor just wide enough for the whole sweep (at most [`PAN_SPAN`] px), so every frame
+    /// sees the scene; other paths use the frame as the sensor. Offsets are whole pixels for
+    /// whole-pixel pans, so a wide reference crops exactly.
+    pub fn view_window(&self, frames: u32, width: u32, height: u32) -> ((u32, u32), (f32, f32)) {
+        match self {
+            CameraPath::Pan { px_per_frame } => {
+                let sweep = (px_per_frame.abs() * frames.saturating_sub(1) as f32)
+                    .min(PAN_SPAN)
+                    .ceil() as u32;
+                let side = width.saturating_add(sweep).max(height);
+                let x0 = if *px_per_frame < 0.0 {
+                    sweep as f32
+                } else {
+                    0.0
+                };
+                ((side, side), (x0, ((side - height) / 2) as f32))
+            }
+            _ => ((width, height), (0.0, 0.0)),
+        }
+    }
+
+    /// Sensor shift (pixels) at `frame` relative to frame 0: non-zero only for pans.
     pub fn view_offset(&self, frame: u32) -> (f32, f32) {
         match self {
-            CameraPath::Pan { px_per_frame } => (px_per_frame * frame as f32, 0.0),
+            CameraPath::Pan { px_per_frame } => {
+                // Back and forth over PAN_SPAN px (a triangle wave), at |px_per_frame| px/frame.
+                let d = (px_per_frame * frame as f32).abs() % (2.0 * PAN_SPAN);
+                let x = if d <= PAN_SPAN { d } else { 2.0 * PAN_SPAN - d };
+                (x.copysign(*px_per_frame), 0.0)
+            }
             _ => (0.0, 0.0),
         }
     }
@@ -216,6 +249,36 @@ mod tests {
         assert_eq!(p.camera(&base(), 10), base());
         assert_eq!(p.view_offset(10), (20.0, 0.0));
         assert_eq!(CameraPath::Static.view_offset(10), (0.0, 0.0));
+    }
+
+    #[test]
+    fn pans_turn_back_and_stay_inside_their_sensor() {
+        let p = CameraPath::Pan { px_per_frame: 8.0 };
+        let xs: Vec<f32> = (0..20).map(|t| p.view_offset(t).0).collect();
+        assert_eq!(
+            &xs[..10],
+            &[0.0, 8.0, 16.0, 24.0, 32.0, 40.0, 48.0, 56.0, 64.0, 56.0]
+        );
+        assert_eq!(xs[16], 0.0);
+        let (view, base) = p.view_window(48, 128, 100);
+        assert_eq!(view, (128 + PAN_SPAN as u32, 128 + PAN_SPAN as u32));
+        assert_eq!(base, (0.0, ((view.1 - 100) / 2) as f32));
+        for t in 0..48 {
+            let x = base.0 + p.view_offset(t).0;
+            assert!(x >= 0.0 && x + 128.0 <= view.0 as f32, "frame {t}");
+        }
+        // A slow pan uses only the sensor it needs; leftward pans start at the right.
+        let slow = CameraPath::Pan { px_per_frame: 1.0 };
+        assert_eq!(slow.view_window(10, 32, 32), ((41, 41), (0.0, 4.0)));
+        let left = CameraPath::Pan { px_per_frame: -1.0 };
+        assert_eq!(
+            left.view_window(10, 32, 32).1.0 + left.view_offset(9).0,
+            0.0
+        );
+        assert_eq!(
+            CameraPath::Static.view_window(5, 32, 16),
+            ((32, 16), (0.0, 0.0))
+        );
     }
 
     #[test]

@@ -243,6 +243,7 @@ fn run_method(
     let mut times: BTreeMap<String, Vec<f64>> = BTreeMap::new();
     let (mut last_frame, mut last_error, mut flip) = (Vec::new(), None, 0.0);
     for seq in 0..args.sequences {
+        let (view, base_offset) = config.camera.view_window(args.frames, w, h);
         let cfg = RenderConfig {
             spp: config.spp,
             bounces: config.bounces,
@@ -250,6 +251,7 @@ fn run_method(
             method,
             sequence: seq,
             no_jitter: !args.jitter,
+            view_size: Some(view),
             ..RenderConfig::new(w, h)
         };
         let mut r = Renderer::new(dev, scene, assets, cfg)?;
@@ -257,7 +259,8 @@ fn run_method(
         let mut acc = RunAccumulator::new(window)?;
         for t in 0..args.frames {
             r.set_camera(config.camera.camera(&base, t));
-            r.set_view_offset(config.camera.view_offset(t));
+            let o = config.camera.view_offset(t);
+            r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
             let stats = r.render_frame()?;
             for p in stats.passes {
                 times.entry(p.name).or_default().push(p.ms);

@@ -40,8 +40,8 @@ impl Image {
 pub enum References {
     /// One image for all frames (static camera).
     Single(Image),
-    /// A wide image; frame t is the window at column `step * t` (integer pans).
-    Pan { wide: Image, step: u32 },
+    /// A wide image; frame t is the window at column `columns[t]` (integer pans).
+    Pan { wide: Image, columns: Vec<u32> },
     /// One image per frame.
     PerFrame(Vec<Image>),
 }
@@ -50,7 +50,7 @@ impl References {
     pub fn frame(&self, t: u32, w: u32, h: u32) -> Image {
         match self {
             References::Single(i) => i.clone(),
-            References::Pan { wide, step } => wide.crop(step * t, w, h),
+            References::Pan { wide, columns } => wide.crop(columns[t as usize], w, h),
             References::PerFrame(v) => v[t as usize].clone(),
         }
     }
@@ -130,9 +130,10 @@ fn render_one(
     view: (u32, u32),
     bar: &ProgressBar,
 ) -> Result<Image> {
+    let (_, base) = job.path.view_window(job.frames, job.width, job.height);
     let file: PathBuf = job.cache.join(format!(
         "{}.ref",
-        key(job, &format!("{what}|w{w}|f{frame}"))
+        key(job, &format!("{what}|w{w}|f{frame}|view{view:?}{base:?}"))
     ));
     if let Some(img) = load(&file) {
         bar.inc(job.spp as u64);
@@ -149,7 +150,8 @@ fn render_one(
     };
     let mut r = Renderer::new(job.dev, job.scene, job.assets, cfg.clone())?;
     r.set_camera(job.path.camera(&job.scene.camera_or_default(), frame));
-    r.set_view_offset(job.path.view_offset(frame));
+    let o = job.path.view_offset(frame);
+    r.set_view_offset((base.0 + o.0, base.1 + o.1));
     for _ in 0..job.spp.div_ceil(cfg.spp) {
         r.render_frame()?;
         bar.inc(cfg.spp as u64);
@@ -179,7 +181,7 @@ pub fn references(job: &RefJob) -> Result<References> {
     }
     let per_frame = |n: u32| n as u64 * job.spp as u64;
     let label = job.path.label();
-    let view = (job.width, job.height);
+    let (view, _) = job.path.view_window(job.frames, job.width, job.height);
     let make_bar = |total: u64| {
         let bar = ProgressBar::new(total);
         bar.set_style(
@@ -197,12 +199,14 @@ pub fn references(job: &RefJob) -> Result<References> {
             r
         }
         CameraPath::Pan { px_per_frame } if px_per_frame.fract() == 0.0 && *px_per_frame >= 0.0 => {
-            let step = *px_per_frame as u32;
-            let wide_w = job.width + step * job.frames.saturating_sub(1);
+            let wide_w = view.0;
+            let columns = (0..job.frames)
+                .map(|t| job.path.view_offset(t).0 as u32)
+                .collect();
             let bar = make_bar(per_frame(1));
             let wide = render_one(job, &label, wide_w, 0, view, &bar)?;
             bar.finish_and_clear();
-            References::Pan { wide, step }
+            References::Pan { wide, columns }
         }
         _ => {
             let bar = make_bar(per_frame(job.frames));

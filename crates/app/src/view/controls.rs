@@ -2,14 +2,17 @@
 use super::input::Action;
 use blueshift_render::{FrameStats, Method};
 
-/// The methods of keys 1-6.
-pub const VIEW_METHODS: [Method; 6] = [
+/// The methods of keys 1-9.
+pub const VIEW_METHODS: [Method; 9] = [
     Method::White,
     Method::Sobol,
     Method::MaskR2,
     Method::Stbn,
     Method::Sort,
     Method::SortRetarget,
+    Method::SortRetargetReproject,
+    Method::SortRetargetEdges,
+    Method::SortRetargetPlus,
 ];
 /// Limits of the interactive controls (the renderer accepts more; these stay interactive).
 pub const MAX_SPP: u32 = 64;
