@@ -170,7 +170,7 @@ fn markdown(
         writeln!(md, "## {}\n", c.label())?;
         writeln!(
             md,
-            "| method | RMSE | P1 | P2 | LF | P1 smooth | P1 edge | EMA P1 | EMA LF | FLIP (accum) | sort+retarget / trace |"
+            "| method | RMSE | P1 | P2 | LF | P1 smooth | P1 edge | EMA P1 | EMA LF | FLIP (accum) | permutation passes / trace |"
         )?;
         writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|")?;
         for r in &cr {
@@ -181,8 +181,12 @@ fn markdown(
                 &white.metrics.ema,
             );
             let trace = r.pass_ms.get("trace").copied().unwrap_or(0.0);
-            let perm = r.pass_ms.get("sort").copied().unwrap_or(0.0)
-                + r.pass_ms.get("retarget").copied().unwrap_or(0.0);
+            // Every pass a method adds to the path tracer (gbuffer, classify, reproject for
+            // our extensions).
+            let perm: f64 = ["gbuffer", "reproject", "classify", "sort", "retarget"]
+                .iter()
+                .map(|p| r.pass_ms.get(*p).copied().unwrap_or(0.0))
+                .sum();
             let overhead = if trace > 0.0 && perm > 0.0 {
                 format!("{:.2}%", 100.0 * perm / trace)
             } else {
