@@ -78,6 +78,8 @@ BrdfInput material_at(SceneMaterial m, vec2 uv) {
     b.base = m.base;
     b.metallic = m.metallic;
     b.roughness = m.roughness;
+    b.specular = m.specular;
+    b.specular_color = m.specular_color;
 #if TRACE_TEXTURES
     if (m.base_color_tex >= 0) b.base *= srgb_to_linear(texture_raw(m.base_color_tex, uv).rgb);
     if (m.mr_tex >= 0) {

@@ -117,10 +117,21 @@ fn white_furnace_sphere_reflects_the_environment() {
         roughness: 1.0,
         ..Material::default()
     };
-    let d = furnace(&gpu, white);
+    let d = furnace(&gpu, white.clone());
     assert!(
         d.to_array().iter().all(|c| (0.95..=1.005).contains(c)),
         "dielectric furnace ratio {d}"
+    );
+    // KHR_materials_specular factor 0: pure Lambert, which loses nothing but the samples
+    // leaving below a facet.
+    let lambert = Material {
+        specular: 0.0,
+        ..white
+    };
+    let l = furnace(&gpu, lambert);
+    assert!(
+        l.to_array().iter().all(|c| (0.99..=1.005).contains(c)),
+        "Lambert furnace ratio {l}"
     );
 }
 
