@@ -114,6 +114,7 @@ vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
     if (g_light_count == 0u) return vec3(0.0);
     uint lo = 0u, hi = g_light_count - 1u;
     while (lo < hi) {  // first light with u.z < cdf
+        LOOP_TICK;
         uint mid = (lo + hi) / 2u;
         if (u.z < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
     }
@@ -235,6 +236,7 @@ vec3 trace_paths(uvec2 px, uint seed, uint s0, uint count) {
     // (Written without a `break` after the step: llvmpipe 22.3 computed wrong paths for the
     // form `if (path_step(..)) { ..; if (done) break; st = path_start(..); }`.)
     while (s < s0 + count) {
+        LOOP_TICK;
         if (path_step(px, seed, sample_index_of(s), s, st)) {
             vec3 l = st.l;
             sum += any(isnan(l)) || any(isinf(l)) ? vec3(0.0) : l;

@@ -16,6 +16,8 @@
 // variant; see passes.rs).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "generated/scene.glsl"
 #include "generated/params.glsl"
 #include "sampling.glsl"
@@ -35,6 +37,17 @@ layout(set = 0, binding = 7, scalar) readonly buffer Info { SceneInfo scene; };
 layout(set = 0, binding = 8, scalar) readonly buffer Seeds { uint seeds[]; };
 layout(set = 0, binding = 9, scalar) readonly buffer Mask { uint mask[]; };
 layout(set = 0, binding = 10, scalar) buffer Estimate { vec4 estimate[]; };
+// [0]: the most loop iterations any SIMD batch ran in this frame (atomicMax; the host zeroes
+// it before the pass and turns values near llvmpipe's limit into an error).
+layout(set = 0, binding = 11, scalar) buffer Status { uint trace_status[]; };
+
+// llvmpipe's loop limiter: one counter per SIMD batch (subgroup), shared by all loops, that
+// ends every loop silently after 65535 iterations of the batch (an iteration in which any
+// lane is active). Every loop ticks once per iteration on the lowest active lane only, so
+// the subgroup's sum is exactly the batch's count. Cost: measured in passes.rs.
+uint g_loop_ticks;
+#define LOOP_TICK g_loop_ticks += subgroupElect() ? 1u : 0u
+#define BVH_LOOP_TICK LOOP_TICK
 
 #include "scene_texels.glsl"
 #include "bvh.glsl"
@@ -46,6 +59,7 @@ void main() {
     // Uniform data first, outside control flow (no early return: it would put the rest of
     // the shader under a lane mask).
     P = pc;
+    g_loop_ticks = 0u;
     g_light_count = scene.light_count;
     g_environment = scene.environment;
     // Keeps every binding in every variant, so all variants share one binding table.
@@ -62,4 +76,6 @@ void main() {
     vec3 prev = estimate[o].rgb;
     l = s0 > 0u ? prev + (l - prev) * (float(count) / float(s0 + count)) : l;
     if (inside && keep != -1) estimate[o] = vec4(l, luminance(l));
+    uint ticks = subgroupAdd(g_loop_ticks);
+    if (subgroupElect()) atomicMax(trace_status[0], ticks);
 }

@@ -24,6 +24,15 @@ pub struct ImagePasses {
 /// large meshes, so 64 vertices stay well below the limit.
 pub const TRACE_MAX_PATH_VERTICES: u32 = 64;
 
+/// llvmpipe ends every loop of a SIMD batch silently once the batch has run 65535 loop
+/// iterations in total (one counter shared by all loops of an invocation).
+pub const LLVMPIPE_LOOP_LIMIT: u32 = 65535;
+
+/// Default [`crate::RenderConfig::loop_guard`]: the trace shader counts its batches' loop
+/// iterations (trace_body.glsl) and the renderer reports a frame whose count reaches this as
+/// an error, since its paths may have been cut short.
+pub const TRACE_LOOP_GUARD: u32 = 60_000;
+
 /// Samples per trace dispatch for paths of up to `bounces + 1` vertices (at least one).
 pub fn samples_per_dispatch(bounces: u32) -> u32 {
     (TRACE_MAX_PATH_VERTICES / (bounces + 1)).max(1)
@@ -96,7 +105,7 @@ fn pipeline(
 }
 
 /// Bindings of every path-tracer variant (and of the all-runtime `trace/trace`).
-pub const TRACE_BINDINGS: [Binding; 11] = [
+pub const TRACE_BINDINGS: [Binding; 12] = [
     Binding::image(0, "scene_nodes"),
     Binding::image(1, "scene_triangles"),
     Binding::image(2, "scene_shading"),
@@ -108,6 +117,7 @@ pub const TRACE_BINDINGS: [Binding; 11] = [
     Binding::storage(8, "seeds"),
     Binding::storage(9, "mask"),
     Binding::storage(10, "estimate"),
+    Binding::storage(11, "trace_status"),
 ];
 
 impl ImagePasses {
@@ -167,6 +177,7 @@ impl ImagePasses {
         seeds: &Buffer,
         mask: &Buffer,
         estimate: &Buffer,
+        status: &Buffer,
     ) -> Result<()> {
         let variant = TraceVariant::of(p, images)?;
         let pipeline = self.trace_pipeline(variant)?;
@@ -177,7 +188,8 @@ impl ImagePasses {
                 sample_count: per_dispatch.min(p.spp - first),
                 ..*p
             };
-            Self::trace_one(rec, pipeline, &p, scene, images, seeds, mask, estimate)?;
+            let out = [estimate, status];
+            Self::trace_one(rec, pipeline, &p, scene, images, seeds, mask, out)?;
         }
         Ok(())
     }
@@ -191,7 +203,7 @@ impl ImagePasses {
         i: &SceneImages,
         seeds: &Buffer,
         mask: &Buffer,
-        estimate: &Buffer,
+        [estimate, status]: [&Buffer; 2],
     ) -> Result<()> {
         rec.dispatch(
             pipeline,
@@ -207,6 +219,7 @@ impl ImagePasses {
                 seeds.into(),
                 mask.into(),
                 estimate.into(),
+                status.into(),
             ],
             bytemuck::bytes_of(p),
             [p.width.div_ceil(8), p.height.div_ceil(8), 1],
