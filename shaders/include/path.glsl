@@ -243,6 +243,7 @@ vec3 trace_paths(uvec2 px, uint seed, uint s0, uint count) {
             s++;
             st = path_start(px, seed, sample_index_of(s), s);
         }
+        LOOP_SYNC;
     }
     return sum;
 }

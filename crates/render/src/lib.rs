@@ -100,6 +100,8 @@ pub struct Renderer {
     initial_seeds: Vec<u32>,
     estimate: Buffer,
     trace_status: Buffer,
+    /// Path vertices per trace dispatch (adapted to the counted loop iterations).
+    dispatch_vertices: u32,
     accum: Buffer,
     ldr: Buffer,
     mask: Buffer,
@@ -161,6 +163,7 @@ impl Renderer {
             initial_seeds: initial,
             estimate: Buffer::new(dev, "frame.estimate", pixels * 16, host)?,
             trace_status: Buffer::new(dev, "frame.trace_status", 16, host)?,
+            dispatch_vertices: passes::TRACE_FIRST_DISPATCH_VERTICES,
             accum: Buffer::new(dev, "frame.accum", pixels * 16, host)?,
             ldr: Buffer::new(dev, "frame.ldr", pixels * 4, host)?,
             mask: Buffer::from_slice(dev, "assets.mask", &assets.mask)?,
@@ -307,7 +310,7 @@ impl Renderer {
         self.rec.begin()?;
         self.rec.fill_buffer(&self.trace_status, 0)?;
         self.rec.begin_pass("trace")?;
-        self.image.trace(
+        let per_dispatch = self.image.trace(
             &mut self.rec,
             &tp,
             &self.scene,
@@ -316,6 +319,7 @@ impl Renderer {
             mask,
             &self.estimate,
             &self.trace_status,
+            self.dispatch_vertices,
         )?;
         if m.sorts() {
             self.rec.begin_pass("sort")?;
@@ -356,6 +360,11 @@ impl Renderer {
         };
         self.frame += 1;
         self.accumulated = self.accumulated.saturating_add(1);
+        self.dispatch_vertices = passes::next_dispatch_vertices(
+            per_dispatch,
+            self.cfg.bounces,
+            stats.trace_loop_iterations,
+        );
         if stats.trace_loop_iterations >= self.cfg.loop_guard {
             return Err(RenderError::LoopLimit {
                 iterations: stats.trace_loop_iterations,
