@@ -310,3 +310,23 @@ impl ImagePasses {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dispatch_size_follows_the_counted_iterations() {
+        // 8 samples of 8 vertices counted 2560 iterations: 40 per vertex -> 400 vertices.
+        assert_eq!(next_dispatch_vertices(8, 7, 2560), 400);
+        // Clamped to 64..=1024 path vertices; no count at all gives the maximum.
+        assert_eq!(
+            next_dispatch_vertices(8, 7, 60_000),
+            TRACE_FIRST_DISPATCH_VERTICES
+        );
+        assert_eq!(next_dispatch_vertices(8, 7, 1), TRACE_MAX_DISPATCH_VERTICES);
+        assert_eq!(next_dispatch_vertices(0, 0, 0), TRACE_MAX_DISPATCH_VERTICES);
+        assert_eq!(samples_per_dispatch(400, 7), 50);
+        assert_eq!(samples_per_dispatch(64, 100), 1);
+    }
+}
