@@ -1,5 +1,10 @@
-// glTF 2.0 metallic-roughness BRDF: Lambert diffuse weighted by (1 - F)(1 - metallic) plus a
-// GGX specular lobe with the height-correlated Smith visibility term. Sampling picks a lobe
+// glTF 2.0 metallic-roughness BRDF with KHR_materials_specular, as the glTF spec mixes it:
+// mix(dielectric, metal, metallic), where the dielectric is
+// (1 - specular * max(F_d)) * Lambert + specular * F_d * GGX (F_d: Schlick from
+// F0 = min(0.04 * specular_color, 1), F90 = 1) and the metal is F_m * GGX (F0 = base colour).
+// GGX uses the height-correlated Smith visibility term. specular = 1 with a white
+// specular_color is the plain glTF dielectric; specular = 0 is pure Lambert. The max(F_d)
+// weight keeps every channel's albedo <= 1 (energy conserved). Sampling picks a lobe
 // with a probability from the Fresnel weight at the view angle; pdfs are the lobe mixture so
 // MIS with light sampling is consistent. All vectors in world space, n facing wo.
 #ifndef BRDF_GLSL
@@ -13,6 +18,8 @@ struct BrdfInput {
     vec3 base;       // linear base colour
     float metallic;
     float roughness; // perceptual; alpha = roughness^2
+    float specular;       // KHR_materials_specular weight of the dielectric specular layer
+    vec3 specular_color;  // its F0 tint
 };
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
@@ -40,12 +47,27 @@ float brdf_alpha2(BrdfInput m) {
     return a * a;
 }
 
-vec3 brdf_f0(BrdfInput m) { return mix(vec3(0.04), m.base, m.metallic); }
+vec3 dielectric_fresnel(BrdfInput m, float cos_theta) {
+    return fresnel_schlick(min(vec3(0.04) * m.specular_color, vec3(1.0)), cos_theta);
+}
 
-// Probability of sampling the specular lobe.
+// The specular lobe's Fresnel weight: dielectric layer and metal mixed by metallic.
+vec3 brdf_fresnel(BrdfInput m, float cos_theta) {
+    return mix(m.specular * dielectric_fresnel(m, cos_theta), fresnel_schlick(m.base, cos_theta),
+               m.metallic);
+}
+
+// The Lambert lobe's weight: what the dielectric layer lets through, times 1 - metallic.
+float brdf_diffuse_weight(BrdfInput m, float cos_theta) {
+    vec3 f = dielectric_fresnel(m, cos_theta);
+    return (1.0 - m.metallic) * (1.0 - m.specular * max(f.r, max(f.g, f.b)));
+}
+
+// Probability of sampling the specular lobe (0 when it is absent: pure Lambert).
 float brdf_spec_prob(BrdfInput m, float n_v) {
-    float spec = luminance(fresnel_schlick(brdf_f0(m), n_v));
+    float spec = luminance(brdf_fresnel(m, n_v));
     float diff = luminance(m.base) * (1.0 - m.metallic);
+    if (spec <= 0.0) return 0.0;
     if (diff <= 0.0) return 1.0;
     return clamp(spec / (spec + diff), 0.1, 0.9);
 }
@@ -56,9 +78,8 @@ vec3 brdf_eval(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
     vec3 h = normalize(wo + wi);
     float n_h = max(dot(n, h), 0.0), v_h = max(dot(wo, h), 0.0);
     float a2 = brdf_alpha2(m);
-    vec3 f = fresnel_schlick(brdf_f0(m), v_h);
-    vec3 spec = f * ggx_d(n_h, a2) * smith_v(n_v, n_l, a2);
-    vec3 diff = (1.0 - f) * (1.0 - m.metallic) * m.base / PI;
+    vec3 spec = brdf_fresnel(m, v_h) * ggx_d(n_h, a2) * smith_v(n_v, n_l, a2);
+    vec3 diff = brdf_diffuse_weight(m, v_h) * m.base / PI;
     return diff + spec;
 }
 

@@ -32,6 +32,12 @@
 #ifndef BVH_GLSL
 #define BVH_GLSL
 
+// A statement run at the top of every loop iteration; the trace shader counts llvmpipe's
+// loop iterations with it (trace_body.glsl). Empty by default.
+#ifndef BVH_LOOP_TICK
+#define BVH_LOOP_TICK
+#endif
+
 #ifdef BVH_FROM_BUFFERS
 void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
                    out uint count) {
@@ -134,9 +140,11 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
     float stack_t[BVH_STACK_SIZE];
     uint sp = 0u;
     while (true) {
+        BVH_LOOP_TICK;
         // An interior node: step to the nearer child hit (pushing the farther one).
         bool pop = false;
         while (count == 0u && !pop) {
+            BVH_LOOP_TICK;
             vec3 lmin, lmax, rmin, rmax;
             uint lfirst, lcount, rfirst, rcount;
             bvh_load_node(first, lmin, lmax, lfirst, lcount);
@@ -164,6 +172,7 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
         // A leaf (possibly the child just reached, in the same iteration): its triangles.
         if (count > 0u && !pop) {
             for (uint i = first; i < first + count; ++i) {
+                BVH_LOOP_TICK;
                 float t, u, v;
                 if (bvh_intersect_triangle(ray, bvh_load_triangle(i), hit.t, t, u, v) &&
                     (t < hit.t || i < hit.triangle)) {
@@ -179,6 +188,7 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
             // Pop the next far child that can still hold a closer hit.
             bool found = false;
             while (sp > 0u) {
+                BVH_LOOP_TICK;
                 sp--;
                 if (stack_t[sp] <= hit.t * BVH_TFAR_SCALE) {
                     first = stack[sp] >> BVH_COUNT_BITS;
@@ -208,8 +218,10 @@ bool bvh_occluded(Ray ray) {
     uint sp = 0u;
     bool occluded = false;
     while (true) {
+        BVH_LOOP_TICK;
         bool pop = false;
         while (count == 0u && !pop) {
+            BVH_LOOP_TICK;
             vec3 lmin, lmax, rmin, rmax;
             uint lfirst, lcount, rfirst, rcount;
             bvh_load_node(first, lmin, lmax, lfirst, lcount);
@@ -227,6 +239,7 @@ bool bvh_occluded(Ray ray) {
         }
         if (count > 0u && !pop) {
             for (uint i = first; i < first + count; ++i) {
+                BVH_LOOP_TICK;
                 float t, u, v;
                 if (bvh_intersect_triangle(ray, bvh_load_triangle(i), ray.tmax, t, u, v)) {
                     occluded = true;

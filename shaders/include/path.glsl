@@ -78,6 +78,8 @@ BrdfInput material_at(SceneMaterial m, vec2 uv) {
     b.base = m.base;
     b.metallic = m.metallic;
     b.roughness = m.roughness;
+    b.specular = m.specular;
+    b.specular_color = m.specular_color;
 #if TRACE_TEXTURES
     if (m.base_color_tex >= 0) b.base *= srgb_to_linear(texture_raw(m.base_color_tex, uv).rgb);
     if (m.mr_tex >= 0) {
@@ -112,6 +114,7 @@ vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
     if (g_light_count == 0u) return vec3(0.0);
     uint lo = 0u, hi = g_light_count - 1u;
     while (lo < hi) {  // first light with u.z < cdf
+        LOOP_TICK;
         uint mid = (lo + hi) / 2u;
         if (u.z < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
     }
@@ -233,12 +236,14 @@ vec3 trace_paths(uvec2 px, uint seed, uint s0, uint count) {
     // (Written without a `break` after the step: llvmpipe 22.3 computed wrong paths for the
     // form `if (path_step(..)) { ..; if (done) break; st = path_start(..); }`.)
     while (s < s0 + count) {
+        LOOP_TICK;
         if (path_step(px, seed, sample_index_of(s), s, st)) {
             vec3 l = st.l;
             sum += any(isnan(l)) || any(isinf(l)) ? vec3(0.0) : l;
             s++;
             st = path_start(px, seed, sample_index_of(s), s);
         }
+        LOOP_SYNC;
     }
     return sum;
 }

@@ -79,6 +79,8 @@ struct SceneMaterial {
     float roughness;
     uint flags;
     int base_color_tex, emissive_tex, mr_tex;  // -1 = none
+    vec3 specular_color;  // KHR_materials_specular
+    float specular;
 };
 
 SceneMaterial scene_material(uint index) {
@@ -86,6 +88,7 @@ SceneMaterial scene_material(uint index) {
     uvec4 a = SCENE_TEXEL(scene_materials, k);
     uvec4 b = SCENE_TEXEL(scene_materials, k + 1u);
     uvec4 c = SCENE_TEXEL(scene_materials, k + 2u);
+    uvec4 d = SCENE_TEXEL(scene_materials, k + 3u);
     SceneMaterial m;
     m.base = uintBitsToFloat(a.xyz);
     m.metallic = uintBitsToFloat(a.w);
@@ -95,6 +98,8 @@ SceneMaterial scene_material(uint index) {
     m.base_color_tex = int(c.y);
     m.emissive_tex = int(c.z);
     m.mr_tex = int(c.w);
+    m.specular_color = uintBitsToFloat(d.xyz);
+    m.specular = uintBitsToFloat(d.w);
     return m;
 }
 

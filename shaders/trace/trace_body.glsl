@@ -16,11 +16,13 @@
 // variant; see passes.rs).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "generated/scene.glsl"
 #include "generated/params.glsl"
 #include "sampling.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = TRACE_GROUP_X, local_size_y = TRACE_GROUP_Y) in;
 layout(push_constant, scalar) uniform Push { TraceParams pc; };
 
 // The scene (texel layout: crates/scene/src/gpu/texels.rs, scene_texels.glsl).
@@ -35,6 +37,22 @@ layout(set = 0, binding = 7, scalar) readonly buffer Info { SceneInfo scene; };
 layout(set = 0, binding = 8, scalar) readonly buffer Seeds { uint seeds[]; };
 layout(set = 0, binding = 9, scalar) readonly buffer Mask { uint mask[]; };
 layout(set = 0, binding = 10, scalar) buffer Estimate { vec4 estimate[]; };
+// [0]: the most loop iterations any SIMD batch ran in this frame (atomicMax; the host zeroes
+// it before the pass and turns values near llvmpipe's limit into an error).
+layout(set = 0, binding = 11, scalar) buffer Status { uint trace_status[]; };
+
+// llvmpipe's loop limiter: one counter per SIMD batch (subgroup), shared by all loops, that
+// ends every loop silently after 65535 iterations of the batch (an iteration in which any
+// lane is active). Each lane counts its own loop iterations and the batch's lanes agree on
+// their maximum once per path vertex (trace_paths), which undercounts the batch only where
+// lanes run different numbers of inner-loop iterations within one vertex (measured: the
+// batch's true count, from a subgroupElect() tick per iteration, was 1.26x..1.46x this on
+// the bundled scenes; that exact tick cost about 5% of the pass, this about 1%). Hence the
+// renderer's guard sits well below the limit (TRACE_LOOP_GUARD).
+uint g_loop_ticks;
+#define LOOP_TICK g_loop_ticks++
+#define LOOP_SYNC g_loop_ticks = subgroupMax(g_loop_ticks)
+#define BVH_LOOP_TICK LOOP_TICK
 
 #include "scene_texels.glsl"
 #include "bvh.glsl"
@@ -46,6 +64,7 @@ void main() {
     // Uniform data first, outside control flow (no early return: it would put the rest of
     // the shader under a lane mask).
     P = pc;
+    g_loop_ticks = 0u;
     g_light_count = scene.light_count;
     g_environment = scene.environment;
     // Keeps every binding in every variant, so all variants share one binding table.
@@ -62,4 +81,6 @@ void main() {
     vec3 prev = estimate[o].rgb;
     l = s0 > 0u ? prev + (l - prev) * (float(count) / float(s0 + count)) : l;
     if (inside && keep != -1) estimate[o] = vec4(l, luminance(l));
+    uint ticks = subgroupMax(g_loop_ticks);
+    if (subgroupElect()) atomicMax(trace_status[0], ticks);
 }

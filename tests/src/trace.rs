@@ -1,7 +1,10 @@
 //! End-to-end path-tracer properties on lavapipe: energy conservation (white furnace), an
-//! emitter seen directly returns its radiance, and the seed buffer stays a permutation.
+//! emitter seen directly returns its radiance, the seed buffer stays a permutation, and the
+//! loop-limit guard reports.
 use crate::Gpu;
-use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
+use blueshift_render::{
+    Method, MethodAssets, RenderConfig, RenderError, Renderer, TRACE_LOOP_GUARD, default_assets_dir,
+};
 use blueshift_scene::{Camera, Material, Scene, Triangle};
 use glam::{Vec2, Vec3};
 
@@ -117,10 +120,21 @@ fn white_furnace_sphere_reflects_the_environment() {
         roughness: 1.0,
         ..Material::default()
     };
-    let d = furnace(&gpu, white);
+    let d = furnace(&gpu, white.clone());
     assert!(
         d.to_array().iter().all(|c| (0.95..=1.005).contains(c)),
         "dielectric furnace ratio {d}"
+    );
+    // KHR_materials_specular factor 0: pure Lambert, which loses nothing but the samples
+    // leaving below a facet.
+    let lambert = Material {
+        specular: 0.0,
+        ..white
+    };
+    let l = furnace(&gpu, lambert);
+    assert!(
+        l.to_array().iter().all(|c| (0.99..=1.005).contains(c)),
+        "Lambert furnace ratio {l}"
     );
 }
 
@@ -211,5 +225,35 @@ fn renderer_seeds_stay_a_permutation() {
             ));
         }
         assert_ne!(r.read_seeds().unwrap(), init, "{method}: seeds never moved");
+    }
+}
+
+/// The loop-limit guard: the trace pass reports its batches' loop iterations, and a frame that
+/// reaches `loop_guard` is a LoopLimit error naming the trace pass (forced here with a tiny
+/// guard; the default guard passes the Cornell box with room to spare).
+#[test]
+fn trace_loop_guard_reports_the_limit() {
+    let gpu = Gpu::new();
+    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
+    let cfg = RenderConfig {
+        spp: 8,
+        bounces: 7,
+        method: Method::White,
+        ..RenderConfig::new(16, 16)
+    };
+    let mut r = Renderer::new(gpu.dev(), &s, &assets(), cfg.clone()).unwrap();
+    let n = r.render_frame().unwrap().trace_loop_iterations;
+    assert!((100..TRACE_LOOP_GUARD).contains(&n), "{n} iterations");
+    let tiny = RenderConfig {
+        loop_guard: 50,
+        ..cfg
+    };
+    let mut r = Renderer::new(gpu.dev(), &s, &assets(), tiny).unwrap();
+    match r.render_frame() {
+        Err(e @ RenderError::LoopLimit { .. }) => {
+            let msg = e.to_string();
+            assert!(msg.contains("trace pass") && msg.contains("--spp"), "{msg}");
+        }
+        other => panic!("expected a loop-limit error, got {other:?}"),
     }
 }

@@ -3,7 +3,7 @@
 use crate::GpuOpts;
 use crate::render::{SceneArgs, config, load_assets, load_scene};
 use anyhow::{Result, bail};
-use blueshift_render::Renderer;
+use blueshift_render::{LLVMPIPE_LOOP_LIMIT, Renderer};
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
@@ -27,10 +27,12 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
     r.render_frame()?; // warm-up: lavapipe compiles the pipeline lazily
     let mut ms: Vec<f64> = Vec::new();
+    let mut loop_iterations = 0;
     let mut per_pass = std::collections::BTreeMap::<String, Vec<f64>>::new();
     for _ in 0..a.frames {
         let s = r.render_frame()?;
         ms.push(s.ms("trace"));
+        loop_iterations = loop_iterations.max(s.trace_loop_iterations);
         for p in s.passes {
             per_pass.entry(p.name).or_default().push(p.ms);
         }
@@ -52,6 +54,10 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
         v.sort_by(f64::total_cmp);
         println!("  pass {name:<10} median {:9.3} ms", v[v.len() / 2]);
     }
+    println!(
+        "  trace loop iterations per SIMD batch: at most {loop_iterations} \
+         (llvmpipe limit {LLVMPIPE_LOOP_LIMIT})"
+    );
     println!(
         "trace median {median:.1} ms: {:.3} Msamples/s",
         samples / median / 1e3

@@ -24,6 +24,8 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("MASK_MODE_SPATIOTEMPORAL", params::MASK_MODE_SPATIOTEMPORAL)
                 .constant("MASK_DIMS", params::MASK_DIMS)
                 .constant("DIMS_PER_BOUNCE", params::DIMS_PER_BOUNCE)
+                .constant("TRACE_GROUP_X", params::TRACE_GROUP_X)
+                .constant("TRACE_GROUP_Y", params::TRACE_GROUP_Y)
                 .render("params"),
         ),
         (

@@ -85,6 +85,10 @@ pub const TRACE_FLAG_ADVANCE_INDEX: u32 = 2;
 /// error is the light-transport integrand's alone; edges of visible emitters otherwise
 /// dominate every error metric.
 pub const TRACE_FLAG_NO_JITTER: u32 = 4;
+/// Workgroup size of the trace pass (invocations = pixels; llvmpipe runs them in SIMD batches
+/// of 8 consecutive invocations, x fastest).
+pub const TRACE_GROUP_X: u32 = 8;
+pub const TRACE_GROUP_Y: u32 = 8;
 /// `TraceParams::mask_mode` values.
 pub const MASK_MODE_NONE: u32 = 0;
 pub const MASK_MODE_2D: u32 = 1;

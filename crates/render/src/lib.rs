@@ -16,6 +16,7 @@
 //! ```
 mod assets;
 mod camera_path;
+mod config;
 mod gbuffer;
 mod images;
 mod method;
@@ -25,10 +26,11 @@ mod upload;
 
 pub use assets::{MethodAssets, default_assets_dir};
 pub use camera_path::{CameraPath, Keyframe};
+pub use config::RenderConfig;
 pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
 pub use method::Method;
-pub use passes::{TRACE_BINDINGS, TraceVariant};
+pub use passes::{LLVMPIPE_LOOP_LIMIT, TRACE_BINDINGS, TRACE_LOOP_GUARD, TraceVariant};
 pub use upload::SceneBuffers;
 
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
@@ -37,7 +39,6 @@ use blueshift_layout::params::{
     TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
 use blueshift_permute::{PermutePasses, Screen};
-use blueshift_sampling::Sampler;
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use passes::ImagePasses;
 
@@ -54,98 +55,26 @@ pub enum RenderError {
     Asset(String),
     #[error("{0}")]
     Invalid(String),
+    /// A SIMD batch of the trace pass ran `iterations` loop iterations, at or over the guard
+    /// below llvmpipe's silent limit: some paths may have been cut short.
+    #[error(
+        "lavapipe loop limit: a batch of the trace pass ran {iterations} loop iterations \
+         (guard {guard}, llvmpipe silently ends loops at 65535), so some paths may be cut \
+         short; lower --spp per frame or scene complexity"
+    )]
+    LoopLimit { iterations: u32, guard: u32 },
 }
 
 pub type Result<T, E = RenderError> = std::result::Result<T, E>;
-
-/// What to render and how.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RenderConfig {
-    pub width: u32,
-    pub height: u32,
-    /// Samples per pixel per frame.
-    pub spp: u32,
-    /// Path vertices after the camera (1 = direct light only).
-    pub bounces: u32,
-    pub method: Method,
-    /// Sorting block edge B (2..=8).
-    pub block: u32,
-    /// Seeded sampler; `None` = the method's default.
-    pub sampler: Option<Sampler>,
-    /// Experiment: hash the frame index into fixed seeds (breaks the temporal correlation).
-    pub frame_salt: bool,
-    /// Seeds the initial seed map (different sequences for the same settings).
-    pub sequence: u32,
-    pub exposure: f32,
-    /// Nominal view size mapping onto the camera's field of view; `None` = (width, height).
-    /// A wider image with the nominal size of the frames renders a whole pan at once.
-    pub view_size: Option<(u32, u32)>,
-    /// Primary rays through pixel centres (no anti-aliasing jitter).
-    pub no_jitter: bool,
-}
-
-impl RenderConfig {
-    pub fn new(width: u32, height: u32) -> Self {
-        Self {
-            width,
-            height,
-            spp: 1,
-            bounces: 8,
-            method: Method::SortRetarget,
-            block: 4,
-            sampler: None,
-            frame_salt: false,
-            sequence: 0,
-            exposure: 1.0,
-            view_size: None,
-            no_jitter: false,
-        }
-    }
-
-    /// Checks every user-controlled value against its range and the device limits.
-    pub fn validate(&self, dev: &Device) -> Result<()> {
-        let max = dev.info().max_image_dimension_2d.min(16384);
-        let bad = |m: String| Err(RenderError::Invalid(m));
-        if self.width == 0 || self.height == 0 || self.width > max || self.height > max {
-            return bad(format!(
-                "resolution {}x{} is outside 1..={max} per side",
-                self.width, self.height
-            ));
-        }
-        if !(1..=4096).contains(&self.spp) {
-            return bad(format!("spp {} is outside 1..=4096", self.spp));
-        }
-        if self.bounces > 64 {
-            return bad(format!("bounces {} is over 64", self.bounces));
-        }
-        if !(2..=8).contains(&self.block) {
-            return bad(format!("block size {} is outside 2..=8", self.block));
-        }
-        if !self.exposure.is_finite() || self.exposure <= 0.0 {
-            return bad(format!(
-                "exposure {} must be a positive number",
-                self.exposure
-            ));
-        }
-        let bytes = self.width as u64 * self.height as u64 * 16;
-        if bytes > dev.info().max_storage_buffer_range {
-            return bad(format!(
-                "resolution {}x{} needs a {} MiB estimate buffer, over the device's {} MiB storage-buffer range",
-                self.width,
-                self.height,
-                bytes >> 20,
-                dev.info().max_storage_buffer_range >> 20
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// Per-pass GPU times of one frame.
 #[derive(Debug, Clone, Default)]
 pub struct FrameStats {
     pub frame: u64,
     pub passes: Vec<PassTime>,
+    /// The most loop iterations one SIMD batch of the trace pass ran (llvmpipe's limit:
+    /// [`LLVMPIPE_LOOP_LIMIT`]).
+    pub trace_loop_iterations: u32,
 }
 
 impl FrameStats {
@@ -173,6 +102,9 @@ pub struct Renderer {
     current: usize,
     initial_seeds: Vec<u32>,
     estimate: Buffer,
+    trace_status: Buffer,
+    /// Path vertices per trace dispatch (adapted to the counted loop iterations).
+    dispatch_vertices: u32,
     accum: Buffer,
     ldr: Buffer,
     mask: Buffer,
@@ -237,6 +169,8 @@ impl Renderer {
             current: 0,
             initial_seeds: initial,
             estimate: Buffer::new(dev, "frame.estimate", pixels * 16, host)?,
+            trace_status: Buffer::new(dev, "frame.trace_status", 16, host)?,
+            dispatch_vertices: passes::TRACE_FIRST_DISPATCH_VERTICES,
             accum: Buffer::new(dev, "frame.accum", pixels * 16, host)?,
             ldr: Buffer::new(dev, "frame.ldr", pixels * 4, host)?,
             mask: Buffer::from_slice(dev, "assets.mask", &assets.mask)?,
@@ -391,8 +325,9 @@ impl Renderer {
             &self.mask
         };
         self.rec.begin()?;
+        self.rec.fill_buffer(&self.trace_status, 0)?;
         self.rec.begin_pass("trace")?;
-        self.image.trace(
+        let per_dispatch = self.image.trace(
             &mut self.rec,
             &tp,
             &self.scene,
@@ -400,6 +335,8 @@ impl Renderer {
             &self.seeds[cur],
             mask,
             &self.estimate,
+            &self.trace_status,
+            self.dispatch_vertices,
         )?;
         if m.sorts() {
             let sp = self.screen.sort_params(self.cfg.block, off)?;
@@ -442,9 +379,21 @@ impl Renderer {
         let stats = FrameStats {
             frame: self.frame,
             passes,
+            trace_loop_iterations: self.trace_status.read::<u32>()?[0],
         };
         self.frame += 1;
         self.accumulated = self.accumulated.saturating_add(1);
+        self.dispatch_vertices = passes::next_dispatch_vertices(
+            per_dispatch,
+            self.cfg.bounces,
+            stats.trace_loop_iterations,
+        );
+        if stats.trace_loop_iterations >= self.cfg.loop_guard {
+            return Err(RenderError::LoopLimit {
+                iterations: stats.trace_loop_iterations,
+                guard: self.cfg.loop_guard,
+            });
+        }
         Ok(stats)
     }
 

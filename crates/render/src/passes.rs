@@ -4,7 +4,9 @@ use crate::images::SceneImages;
 use crate::upload::SceneBuffers;
 use crate::{RenderError, Result};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Image, Recorder};
-use blueshift_layout::params::{ImageParams, MASK_MODE_NONE, TraceParams};
+use blueshift_layout::params::{
+    ImageParams, MASK_MODE_NONE, TRACE_GROUP_X, TRACE_GROUP_Y, TraceParams,
+};
 use blueshift_sampling::Sampler;
 
 pub struct ImagePasses {
@@ -16,17 +18,46 @@ pub struct ImagePasses {
     upload: ComputePipeline,
 }
 
-/// Path vertices (samples x (bounces + 1)) one trace dispatch may run per invocation. The
-/// samples of a dispatch run in one loop over path vertices (a lane whose path ends starts
-/// its next sample, so the 8 SIMD lanes stay busy), and all their loop iterations count
-/// against llvmpipe's limit of 65535 per invocation, past which loops silently exit. A path
-/// vertex costs about 30 loop iterations in the bundled scenes, a few hundred at worst in
-/// large meshes, so 64 vertices stay well below the limit.
-pub const TRACE_MAX_PATH_VERTICES: u32 = 64;
+/// Path vertices (samples x (bounces + 1)) one trace dispatch runs per invocation in the
+/// first frame. The samples of a dispatch run in one loop over path vertices (a lane whose
+/// path ends starts its next sample, so the 8 SIMD lanes stay busy), and all their loop
+/// iterations count against llvmpipe's limit of 65535 per SIMD batch, past which loops
+/// silently exit. A path vertex costs about 30..60 loop iterations in the bundled scenes, a
+/// few hundred at worst in large meshes, so 64 vertices stay well below the limit; later
+/// frames size their dispatches from the counted iterations ([`next_dispatch_vertices`]).
+pub const TRACE_FIRST_DISPATCH_VERTICES: u32 = 64;
+/// Bounds of the adaptive dispatch size, in path vertices.
+pub const TRACE_MAX_DISPATCH_VERTICES: u32 = 1024;
+/// Counted loop iterations per batch a dispatch is sized for: well under the guard, so that
+/// a frame costlier than the last (a camera move) still stays below it.
+pub const TRACE_DISPATCH_ITERATIONS: u32 = 16_000;
 
-/// Samples per trace dispatch for paths of up to `bounces + 1` vertices (at least one).
-pub fn samples_per_dispatch(bounces: u32) -> u32 {
-    (TRACE_MAX_PATH_VERTICES / (bounces + 1)).max(1)
+/// llvmpipe ends every loop of a SIMD batch silently once the batch has run 65535 loop
+/// iterations in total (one counter shared by all loops of an invocation).
+pub const LLVMPIPE_LOOP_LIMIT: u32 = 65535;
+
+/// Default [`crate::RenderConfig::loop_guard`]: the trace shader counts its batches' loop
+/// iterations (trace_body.glsl) and the renderer reports a frame whose count reaches this as
+/// an error, since its paths may have been cut short. The count undercounts a batch by up to
+/// ~1.5x (trace_body.glsl), hence 40000 of 65535.
+pub const TRACE_LOOP_GUARD: u32 = 40_000;
+
+/// Samples per trace dispatch of `vertices` path vertices for paths of up to `bounces + 1`
+/// vertices (at least one).
+pub fn samples_per_dispatch(vertices: u32, bounces: u32) -> u32 {
+    (vertices / (bounces + 1)).max(1)
+}
+
+/// The dispatch size (path vertices) for the next frame, after a frame whose dispatches of
+/// `samples` samples each counted `iterations` loop iterations in their costliest batch:
+/// [`TRACE_DISPATCH_ITERATIONS`] at the same cost per vertex.
+pub fn next_dispatch_vertices(samples: u32, bounces: u32, iterations: u32) -> u32 {
+    let used = samples.max(1) as u64 * (bounces as u64 + 1);
+    let per_vertex = (iterations as u64).div_ceil(used).max(1);
+    (TRACE_DISPATCH_ITERATIONS as u64 / per_vertex).clamp(
+        TRACE_FIRST_DISPATCH_VERTICES as u64,
+        TRACE_MAX_DISPATCH_VERTICES as u64,
+    ) as u32
 }
 
 /// Which path-tracer pipeline a frame needs. llvmpipe executes both sides of every branch,
@@ -96,7 +127,7 @@ fn pipeline(
 }
 
 /// Bindings of every path-tracer variant (and of the all-runtime `trace/trace`).
-pub const TRACE_BINDINGS: [Binding; 11] = [
+pub const TRACE_BINDINGS: [Binding; 12] = [
     Binding::image(0, "scene_nodes"),
     Binding::image(1, "scene_triangles"),
     Binding::image(2, "scene_shading"),
@@ -108,6 +139,7 @@ pub const TRACE_BINDINGS: [Binding; 11] = [
     Binding::storage(8, "seeds"),
     Binding::storage(9, "mask"),
     Binding::storage(10, "estimate"),
+    Binding::storage(11, "trace_status"),
 ];
 
 impl ImagePasses {
@@ -156,7 +188,8 @@ impl ImagePasses {
     }
 
     /// Records the path-tracing pass writing the raw estimate of this frame: one dispatch per
-    /// [`samples_per_dispatch`] samples (see `TraceParams::sample_index`).
+    /// [`samples_per_dispatch`]`(vertices, ..)` samples (see `TraceParams::sample_index`);
+    /// returns the samples per dispatch.
     #[allow(clippy::too_many_arguments)]
     pub fn trace(
         &mut self,
@@ -167,19 +200,22 @@ impl ImagePasses {
         seeds: &Buffer,
         mask: &Buffer,
         estimate: &Buffer,
-    ) -> Result<()> {
+        status: &Buffer,
+        vertices: u32,
+    ) -> Result<u32> {
         let variant = TraceVariant::of(p, images)?;
         let pipeline = self.trace_pipeline(variant)?;
-        let per_dispatch = samples_per_dispatch(p.max_bounces).min(p.spp);
+        let per_dispatch = samples_per_dispatch(vertices, p.max_bounces).min(p.spp);
         for first in (0..p.spp).step_by(per_dispatch as usize) {
             let p = TraceParams {
                 sample_index: first,
                 sample_count: per_dispatch.min(p.spp - first),
                 ..*p
             };
-            Self::trace_one(rec, pipeline, &p, scene, images, seeds, mask, estimate)?;
+            let out = [estimate, status];
+            Self::trace_one(rec, pipeline, &p, scene, images, seeds, mask, out)?;
         }
-        Ok(())
+        Ok(per_dispatch)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -191,7 +227,7 @@ impl ImagePasses {
         i: &SceneImages,
         seeds: &Buffer,
         mask: &Buffer,
-        estimate: &Buffer,
+        [estimate, status]: [&Buffer; 2],
     ) -> Result<()> {
         rec.dispatch(
             pipeline,
@@ -207,9 +243,14 @@ impl ImagePasses {
                 seeds.into(),
                 mask.into(),
                 estimate.into(),
+                status.into(),
             ],
             bytemuck::bytes_of(p),
-            [p.width.div_ceil(8), p.height.div_ceil(8), 1],
+            [
+                p.width.div_ceil(TRACE_GROUP_X),
+                p.height.div_ceil(TRACE_GROUP_Y),
+                1,
+            ],
         )?;
         Ok(())
     }
@@ -267,5 +308,25 @@ impl ImagePasses {
             groups,
         )?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dispatch_size_follows_the_counted_iterations() {
+        // 8 samples of 8 vertices counted 2560 iterations: 40 per vertex -> 400 vertices.
+        assert_eq!(next_dispatch_vertices(8, 7, 2560), 400);
+        // Clamped to 64..=1024 path vertices; no count at all gives the maximum.
+        assert_eq!(
+            next_dispatch_vertices(8, 7, 60_000),
+            TRACE_FIRST_DISPATCH_VERTICES
+        );
+        assert_eq!(next_dispatch_vertices(8, 7, 1), TRACE_MAX_DISPATCH_VERTICES);
+        assert_eq!(next_dispatch_vertices(0, 0, 0), TRACE_MAX_DISPATCH_VERTICES);
+        assert_eq!(samples_per_dispatch(400, 7), 50);
+        assert_eq!(samples_per_dispatch(64, 100), 1);
     }
 }

@@ -27,6 +27,11 @@ pub struct Material {
     pub roughness: f32,
     /// Emissive factor times KHR_materials_emissive_strength.
     pub emissive: Vec3,
+    /// KHR_materials_specular `specularFactor`: weight of the dielectric specular layer
+    /// (1 = the plain glTF dielectric, 0 = pure Lambert diffuse).
+    pub specular: f32,
+    /// KHR_materials_specular `specularColorFactor`: tint of the dielectric F0 (linear RGB).
+    pub specular_color: Vec3,
     pub base_color_texture: Option<u32>,
     pub metallic_roughness_texture: Option<u32>,
     pub emissive_texture: Option<u32>,
@@ -42,6 +47,8 @@ impl Default for Material {
             metallic: 1.0,
             roughness: 1.0,
             emissive: Vec3::ZERO,
+            specular: 1.0,
+            specular_color: Vec3::ONE,
             base_color_texture: None,
             metallic_roughness_texture: None,
             emissive_texture: None,

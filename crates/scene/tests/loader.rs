@@ -5,9 +5,9 @@ mod common;
 
 use blueshift_scene::presets::GltfBuilder;
 use blueshift_scene::{LoadOptions, Scene, SceneGpu};
-use common::{embedded_uri, load, one_quad, quad, write, write_json};
+use common::{embedded_uri, emissive_material, load, one_quad, quad, write, write_json};
 use glam::Vec3;
-use serde_json::json;
+use serde_json::{Value, json};
 
 fn tmp() -> tempfile::TempDir {
     tempfile::tempdir().expect("tempdir")
@@ -315,4 +315,47 @@ fn light_cdf_is_power_weighted() {
     let lum = 0.2126 + 0.7152 * 0.5 + 0.0722 * 0.25;
     let total = lum * std::f32::consts::PI * (3.0 + 1.0) * 4.0; // two quads of area 4
     assert!((gpu.info.total_light_power - total).abs() < 1e-3 * total);
+}
+
+/// KHR_materials_specular: factors are read (clamped, non-finite -> default), its textures are
+/// skipped with one warning, and materials without it keep the plain glTF dielectric (1, white).
+#[test]
+fn specular_extension_factors_are_read() {
+    let dir = tmp();
+    let mut b = GltfBuilder::new();
+    let tex = b.add_png_texture("junk", b"not a png at all", json!({}));
+    let spec = |ext: Value| {
+        let mut m = emissive_material(1.0);
+        m["extensions"]["KHR_materials_specular"] = ext;
+        m
+    };
+    let lambert = b.add_material(spec(json!({ "specularFactor": 0.0 })));
+    let tinted = b.add_material(spec(json!({
+        "specularFactor": 2.5,
+        "specularColorFactor": [0.5, 2.0, -1.0],
+        "specularTexture": { "index": tex },
+        "specularColorTexture": { "index": tex }
+    })));
+    let plain = b.add_material(emissive_material(1.0));
+    for (i, m) in [lambert, tinted, plain].into_iter().enumerate() {
+        let mesh = b.add_mesh(&format!("quad{i}"), &quad(true), Some(m));
+        let n = b.add_node(json!({ "mesh": mesh }));
+        b.add_root(n);
+    }
+    let scene = load(&write(dir.path(), "spec.gltf", &b.to_gltf_embedded())).unwrap();
+    let m = &scene.materials;
+    assert_eq!((m[0].specular, m[0].specular_color), (0.0, Vec3::ONE));
+    assert_eq!(
+        (m[1].specular, m[1].specular_color),
+        (1.0, Vec3::new(0.5, 2.0, 0.0))
+    );
+    assert_eq!((m[2].specular, m[2].specular_color), (1.0, Vec3::ONE));
+    let w = &scene.warnings;
+    assert_eq!(
+        w.iter().filter(|w| w.contains("specular")).count(),
+        1,
+        "{w:?}"
+    );
+    assert_eq!(m[1].base_color_texture, None);
+    assert!(!w.iter().any(|w| w.contains("extension")), "{w:?}");
 }

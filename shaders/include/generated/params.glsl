@@ -64,4 +64,6 @@ const uint MASK_MODE_2D = 1u;
 const uint MASK_MODE_SPATIOTEMPORAL = 2u;
 const uint MASK_DIMS = 9u;
 const uint DIMS_PER_BOUNCE = 7u;
+const uint TRACE_GROUP_X = 8u;
+const uint TRACE_GROUP_Y = 8u;
 #endif

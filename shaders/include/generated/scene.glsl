@@ -16,7 +16,7 @@ const uint SCENE_TEXELS_WIDTH_LOG2 = 12u;
 const uint NODE_TEXELS = 2u;
 const uint TRIANGLE_TEXELS = 3u;
 const uint SHADING_TEXELS = 4u;
-const uint MATERIAL_TEXELS = 3u;
+const uint MATERIAL_TEXELS = 4u;
 const uint LIGHT_TEXELS = 1u;
 const uint TEXTURE_TEXELS = 1u;
 const uint ATLAS_WORDS_PER_TEXEL = 4u;
@@ -56,8 +56,10 @@ struct GpuMaterial {
     int emissive_tex; // offset 40, size 4
     int mr_tex; // offset 44, size 4
     uint flags; // offset 48, size 4
+    vec3 specular_color; // offset 52, size 12
+    float specular; // offset 64, size 4
 };
-const uint GPU_MATERIAL_SIZE = 52;
+const uint GPU_MATERIAL_SIZE = 68;
 
 struct GpuTexture {
     uint offset; // offset 0, size 4

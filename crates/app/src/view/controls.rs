@@ -241,6 +241,7 @@ mod tests {
                     ms: 2.0,
                 })
                 .collect(),
+            trace_loop_iterations: 0,
         };
         let mut s = settings();
         s.apply(Action::ToggleAccumulation);

@@ -111,6 +111,8 @@ impl SceneGpu {
                 } else {
                     0
                 },
+                specular_color: m.specular_color,
+                specular: m.specular,
             })
             .collect();
 
@@ -360,6 +362,8 @@ const ZERO_MATERIAL: GpuMaterial = GpuMaterial {
     emissive_tex: -1,
     mr_tex: -1,
     flags: 0,
+    specular_color: Vec3::ZERO,
+    specular: 0.0,
 };
 const ZERO_TEXTURE: GpuTexture = GpuTexture {
     offset: 0,

@@ -105,6 +105,7 @@ gpu_struct! {
     /// `emissive` is the emissive factor times KHR_materials_emissive_strength (linear
     /// radiance). Texture fields index `textures[]`, -1 = none. Base color and emissive
     /// texels are sRGB-encoded, `mr_tex` is linear (G = roughness, B = metallic, as glTF).
+    /// `specular` / `specular_color`: KHR_materials_specular factors (1 / white = plain glTF).
     pub struct GpuMaterial {
         pub base_color: [f32; 4],
         pub emissive: Vec3,
@@ -114,6 +115,8 @@ gpu_struct! {
         pub emissive_tex: i32,
         pub mr_tex: i32,
         pub flags: u32,
+        pub specular_color: Vec3,
+        pub specular: f32,
     }
 }
 
@@ -249,7 +252,7 @@ const _: () = {
     assert!(size_of::<BvhNode>() == 32);
     assert!(size_of::<GpuTriangle>() == 36);
     assert!(size_of::<TriangleShading>() == 68);
-    assert!(size_of::<GpuMaterial>() == 52);
+    assert!(size_of::<GpuMaterial>() == 68);
     assert!(size_of::<GpuTexture>() == 16);
     assert!(size_of::<GpuLight>() == 16);
     assert!(size_of::<Ray>() == 32);

@@ -15,7 +15,7 @@
 //! | BVH node   | 2      | `(min.xyz, left_first)`, `(max.xyz, count)` (= [`BvhNode`])          |
 //! | triangle   | 3      | `(v0.xyz, e1.x)`, `(e1.yz, e2.xy)`, `(e2.z, material, light, 0)`     |
 //! | shading    | 4      | `(n0.xyz, uv0.x)`, `(n1.xyz, uv0.y)`, `(n2.xyz, uv1.x)`, `(uv1.y, uv2.xy, 0)` |
-//! | material   | 3      | `(base.rgb, metallic)`, `(emissive.rgb, roughness)`, `(flags, base_tex, emissive_tex, mr_tex)` |
+//! | material   | 4      | `(base.rgb, metallic)`, `(emissive.rgb, roughness)`, `(flags, base_tex, emissive_tex, mr_tex)`, `(specular_color.rgb, specular)` |
 //! | light      | 1      | `(triangle, area, pdf, cdf)` (= [`GpuLight`])                        |
 //! | texture    | 1      | `(offset, width, height, flags)` (= [`GpuTexture`])                  |
 //! | texel      | 1/4    | four packed RGBA8 texels of the atlas per image texel                |
@@ -33,7 +33,7 @@ pub const SCENE_TEXELS_WIDTH: u32 = 1 << SCENE_TEXELS_WIDTH_LOG2;
 pub const NODE_TEXELS: u32 = 2;
 pub const TRIANGLE_TEXELS: u32 = 3;
 pub const SHADING_TEXELS: u32 = 4;
-pub const MATERIAL_TEXELS: u32 = 3;
+pub const MATERIAL_TEXELS: u32 = 4;
 pub const LIGHT_TEXELS: u32 = 1;
 pub const TEXTURE_TEXELS: u32 = 1;
 /// Atlas texels (RGBA8 words) per image texel.
@@ -170,6 +170,12 @@ impl SceneGpu {
                         m.emissive_tex as u32,
                         m.mr_tex as u32,
                     ],
+                    [
+                        f(m.specular_color.x),
+                        f(m.specular_color.y),
+                        f(m.specular_color.z),
+                        f(m.specular),
+                    ],
                 ]
             })
             .collect();
@@ -219,7 +225,7 @@ fn node_texels(n: &BvhNode) -> [Texel; 2] {
 // The texel counts above are what the closures emit.
 const _: () = {
     assert!(NODE_TEXELS == 2 && TRIANGLE_TEXELS == 3 && SHADING_TEXELS == 4);
-    assert!(MATERIAL_TEXELS == 3 && LIGHT_TEXELS == 1 && TEXTURE_TEXELS == 1);
+    assert!(MATERIAL_TEXELS == 4 && LIGHT_TEXELS == 1 && TEXTURE_TEXELS == 1);
     assert!(SCENE_TEXELS_WIDTH.is_power_of_two());
 };
 
@@ -263,10 +269,12 @@ mod tests {
             assert_eq!(Vec2::new(unf(w[1]), unf(w[2])), s.uv2);
         }
         for (i, m) in g.materials.iter().enumerate() {
-            let [a, b, c] = [0, 1, 2].map(|j| t.materials.texels[3 * i + j]);
+            let [a, b, c, d] = [0, 1, 2, 3].map(|j| t.materials.texels[4 * i + j]);
             assert_eq!([unf(a[0]), unf(a[1]), unf(a[2])], m.base_color[..3]);
             assert_eq!((unf(a[3]), unf(b[3])), (m.metallic, m.roughness));
             assert_eq!(Vec3::new(unf(b[0]), unf(b[1]), unf(b[2])), m.emissive);
+            let spec = Vec3::new(unf(d[0]), unf(d[1]), unf(d[2]));
+            assert_eq!((spec, unf(d[3])), (m.specular_color, m.specular));
             assert_eq!(
                 [c[0], c[1], c[2], c[3]],
                 [

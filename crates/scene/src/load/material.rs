@@ -178,6 +178,7 @@ pub(super) fn load_materials(
         let finite = |x: f32, default: f32| if x.is_finite() { x } else { default };
         let bc = pbr.base_color_factor().map(|x| finite(x, 1.0).max(0.0));
         let emissive = Vec3::from(m.emissive_factor()) * strength;
+        let (specular, specular_color) = specular_of(&m, ctx);
         out.push(Material {
             name: m.name().map(str::to_string),
             base_color: bc,
@@ -188,6 +189,8 @@ pub(super) fn load_materials(
             } else {
                 Vec3::ZERO
             },
+            specular,
+            specular_color,
             base_color_texture: use_texture(pbr.base_color_texture(), "base color", ctx),
             metallic_roughness_texture: use_texture(
                 pbr.metallic_roughness_texture(),
@@ -199,4 +202,30 @@ pub(super) fn load_materials(
         });
     }
     out
+}
+
+/// KHR_materials_specular factors (1 and white without the extension). Its textures are
+/// skipped with one warning; non-finite factors fall back to the defaults.
+fn specular_of(m: &gltf::Material, ctx: &mut Ctx) -> (f32, Vec3) {
+    let Some(s) = m.specular() else {
+        return (1.0, Vec3::ONE);
+    };
+    if s.specular_texture().is_some() || s.specular_color_texture().is_some() {
+        ctx.warnings.warn("specular-texture", || {
+            "KHR_materials_specular textures ignored (the factors are used)".into()
+        });
+    }
+    let f = s.specular_factor();
+    let factor = if f.is_finite() {
+        f.clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let c = Vec3::from(s.specular_color_factor());
+    let color = if c.is_finite() {
+        c.max(Vec3::ZERO)
+    } else {
+        Vec3::ONE
+    };
+    (factor, color)
 }

@@ -4,7 +4,8 @@
 //! (else the first scene), flattened to world space (normals by the inverse transpose; winding
 //! flipped under mirroring transforms so the face normal keeps pointing out of the front face);
 //! metallic-roughness materials with base color / metallic-roughness / emissive textures and
-//! KHR_materials_emissive_strength; the first perspective camera; the environment.
+//! KHR_materials_emissive_strength; KHR_materials_specular factors (its textures are skipped);
+//! the first perspective camera; the environment.
 //!
 //! Environment: glTF has no environment light, so it is taken from
 //! [`LoadOptions::environment`] if set, else from the scene's `extras`
@@ -296,7 +297,7 @@ fn load_buffers(
 fn warn_extensions(document: &gltf::Document, warnings: &mut Warnings) {
     for ext in document.extensions_used() {
         let reason = match ext {
-            "KHR_materials_emissive_strength" => continue,
+            "KHR_materials_emissive_strength" | "KHR_materials_specular" => continue,
             "KHR_texture_transform" => "ignored: textures are sampled without the transform",
             "KHR_lights_punctual" => "ignored: only emissive triangles emit light",
             e if e.starts_with("KHR_materials_") => "ignored: only metallic-roughness is used",

@@ -117,11 +117,10 @@ impl GltfBuilder {
 
     /// Adds a raw material object; returns its index.
     pub fn add_material(&mut self, material: Value) -> usize {
-        if material
-            .pointer("/extensions/KHR_materials_emissive_strength")
-            .is_some()
-        {
-            self.use_extension("KHR_materials_emissive_strength");
+        for ext in ["KHR_materials_emissive_strength", "KHR_materials_specular"] {
+            if material.pointer(&format!("/extensions/{ext}")).is_some() {
+                self.use_extension(ext);
+            }
         }
         self.materials.push(material);
         self.materials.len() - 1

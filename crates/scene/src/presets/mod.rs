@@ -2,7 +2,9 @@
 //! the buffer and PNG textures embedded as a base64 data URI). Output bytes are deterministic.
 //!
 //! - `cornell-box`: Mitsuba 3's `mi.cornell_box()` (same walls, boxes, light, reflectances,
-//!   radiance and sensor; fov 39.3077 deg on the smaller axis, i.e. yfov for square images).
+//!   radiance and sensor; fov 39.3077 deg on the smaller axis, i.e. yfov for square images;
+//!   pure Lambert materials via KHR_materials_specular `specularFactor` 0, as Mitsuba's
+//!   `diffuse` BSDF).
 //! - `textured`: high-frequency checker / noise / stripe textures on a floor, a cube and a
 //!   sphere, an area light and a constant environment (scene extras).
 //! - `edges`: a fence of thin posts, rails and slats before columns and a back wall: many
@@ -76,6 +78,13 @@ fn material(name: &str, rgb: [f64; 3], emission: Option<[f64; 3]>) -> Value {
     m
 }
 
+/// `m` without the dielectric specular layer (KHR_materials_specular `specularFactor` 0):
+/// pure Lambert, like the `diffuse` BSDF of Mitsuba's Cornell box.
+fn lambert(mut m: Value) -> Value {
+    m["extensions"]["KHR_materials_specular"] = json!({ "specularFactor": 0.0 });
+    m
+}
+
 fn node(mesh: usize, transform: Value) -> Value {
     let mut n = transform;
     n["mesh"] = json!(mesh);
@@ -89,14 +98,26 @@ const Z: [f64; 3] = [0.0, 0.0, 1.0];
 /// Mitsuba 3 `mi.cornell_box()`: unit rectangles / cubes placed by the same transforms.
 fn cornell_box() -> GltfBuilder {
     let mut b = GltfBuilder::new();
-    let white = b.add_material(material("white", [0.885809, 0.698859, 0.666422], None));
-    let green = b.add_material(material("green", [0.105421, 0.37798, 0.076425], None));
-    let red = b.add_material(material("red", [0.570068, 0.0430135, 0.0443706], None));
-    let light = b.add_material(material(
+    let white = b.add_material(lambert(material(
+        "white",
+        [0.885809, 0.698859, 0.666422],
+        None,
+    )));
+    let green = b.add_material(lambert(material(
+        "green",
+        [0.105421, 0.37798, 0.076425],
+        None,
+    )));
+    let red = b.add_material(lambert(material(
+        "red",
+        [0.570068, 0.0430135, 0.0443706],
+        None,
+    )));
+    let light = b.add_material(lambert(material(
         "light",
         [0.885809, 0.698859, 0.666422],
         Some([18.387, 13.9873, 6.75357]),
-    ));
+    )));
     let rect = rectangle(1.0);
     let rect_white = b.add_mesh("rectangle-white", &rect, Some(white));
     let rect_green = b.add_mesh("rectangle-green", &rect, Some(green));
