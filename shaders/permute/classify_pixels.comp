@@ -22,18 +22,22 @@ void main() {
     uint block = gl_GlobalInvocationID.x;
     if (block >= blocks_x * ((p.height + B - 1u) / B)) return;
     uvec2 origin = uvec2(block % blocks_x, block / blocks_x) * B;
+    // The block's texels are loaded once (storage-buffer loads in the inner loop would repeat
+    // each load up to B*B times; on lavapipe a divergent load is itself a loop over lanes).
     uint at[64], leader[64];
+    GBufferTexel g[64];
     uint n = 0u;
     for (uint k = 0u; k < B * B; ++k) {
         uvec2 px = origin + uvec2(k % B, k / B);
         if (px.x >= p.width || px.y >= p.height) continue;
-        at[n++] = px.y * p.width + px.x;
+        at[n] = px.y * p.width + px.x;
+        g[n] = gbuffer[at[n]];
+        n++;
     }
     for (uint a = 0u; a < n; ++a) {
-        GBufferTexel ga = gbuffer[at[a]];
         uint cls = a;
         for (uint b = 0u; b < a; ++b) {
-            bool join = cls == a && leader[b] == b && similar(ga, gbuffer[at[b]]);
+            bool join = cls == a && leader[b] == b && similar(g[a], g[b]);
             cls = join ? b : cls;
         }
         leader[a] = cls;

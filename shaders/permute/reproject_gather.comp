@@ -5,6 +5,8 @@
 // CPU twin: crates/permute/src/reproject.rs reproject_seeds_cpu.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "generated/motion.glsl"
 
 layout(local_size_x = 64) in;
@@ -24,15 +26,18 @@ void main() {
     uint s = src[q];
     bool won = s != REPROJECT_NONE && claim[s] == q;
     uint y = q / p.padded_width;
-    if (won) {
-        seeds_out[q] = seeds_in[s];
-        ivec2 m = ivec2(q % p.padded_width, y) - ivec2(s % p.padded_width, s / p.padded_width);
-        m = clamp(m, ivec2(-REPROJECT_MAX_MOTION), ivec2(REPROJECT_MAX_MOTION));
-        atomicAdd(motion[0], m.x);
-        atomicAdd(motion[1], m.y);
-        atomicAdd(motion[2], 1);
-    } else {
-        atomicAdd(rows[2u * y], 1u);
+    uint sc = won ? s : q;
+    ivec2 m = ivec2(q % p.padded_width, y) - ivec2(sc % p.padded_width, sc / p.padded_width);
+    m = clamp(m, ivec2(-REPROJECT_MAX_MOTION), ivec2(REPROJECT_MAX_MOTION));
+    if (won) seeds_out[q] = seeds_in[s];
+    else atomicAdd(rows[2u * y], 1u);
+    // Motion sums: one atomic per subgroup instead of three per pixel (one address for the
+    // whole screen would serialise every invocation). Integer sums: order-independent.
+    ivec3 sum = subgroupAdd(won ? ivec3(m, 1) : ivec3(0));
+    if (subgroupElect() && sum.z > 0) {
+        atomicAdd(motion[0], sum.x);
+        atomicAdd(motion[1], sum.y);
+        atomicAdd(motion[2], sum.z);
     }
     if (claim[q] == REPROJECT_NONE) atomicAdd(rows[2u * y + 1u], 1u);
 }
