@@ -43,7 +43,7 @@ pub enum Event {
 /// A command given by a key press.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Action {
-    /// Keys 1-6: index into `controls::VIEW_METHODS`.
+    /// Keys 1-7: index into `controls::VIEW_METHODS`.
     Method(usize),
     Block(i32),
     Spp(i32),
@@ -59,7 +59,7 @@ pub enum Action {
 /// The command of a key pressed while not looking around, if any.
 pub fn action_of(key: Key) -> Option<Action> {
     Some(match key {
-        Key::Char(c @ '1'..='6') => Action::Method(c as usize - '1' as usize),
+        Key::Char(c @ '1'..='7') => Action::Method(c as usize - '1' as usize),
         Key::Char('b') => Action::Block(1),
         Key::Char('B') => Action::Block(-1),
         Key::Char('+' | '=') => Action::Spp(1),
