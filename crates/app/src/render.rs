@@ -31,8 +31,8 @@ pub struct SceneArgs {
     /// Seeded sampler (white, sobol, r2, hbo19); default depends on the method.
     #[arg(long)]
     pub sampler: Option<String>,
-    /// Frame-0 seed map: random, or hbo19 (HBO+19 tile positions with the hbo19 sampler, so
-    /// that sort / sort-retarget start from blue noise).
+    /// Frame-0 seed map of sort / sort-retarget: random, or hbo19 (HBO+19 tile positions with
+    /// the hbo19 sampler, so that they start from blue noise).
     #[arg(long, default_value = "random")]
     pub initial_seeds: String,
     /// Directory with masks and retarget tables.

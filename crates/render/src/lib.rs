@@ -105,9 +105,10 @@ impl RenderConfig {
         }
     }
 
-    /// Whether seeds are HBO+19 tile positions.
+    /// Whether seeds are HBO+19 tile positions: always for `hbo19`; for the permutation
+    /// methods if asked (the others keep their own seeds, so baselines stay what they are).
     pub fn tile_seeds(&self) -> bool {
-        self.method == Method::Hbo19 || self.seed_map == SeedMap::Hbo19
+        self.method == Method::Hbo19 || (self.seed_map == SeedMap::Hbo19 && self.method.sorts())
     }
 
     /// The seeded sampler in effect.

@@ -9,8 +9,9 @@ pub enum SeedMap {
     /// Distinct hashed seeds: frame 0 is white noise.
     #[default]
     Random,
-    /// Seed = the pixel's position in the HBO+19 key tile, with the `hbo19` sampler (unless
-    /// overridden): frame 0 is already blue, the permutation passes keep it so.
+    /// For `sort` / `sort-retarget`: seed = the pixel's position in the HBO+19 key tile, with
+    /// the `hbo19` sampler (unless overridden): frame 0 is already blue, the permutation
+    /// passes keep it so.
     Hbo19,
 }
 

@@ -65,8 +65,8 @@ pub struct EvalArgs {
     /// and no seed permutation can move it, so it would dominate every metric.
     #[arg(long)]
     pub jitter: bool,
-    /// Frame-0 seed map of every method: random, or hbo19 (HBO+19 tile positions with the
-    /// hbo19 sampler; the `hbo19` method always uses them).
+    /// Frame-0 seed map of sort and sort-retarget: random, or hbo19 (HBO+19 tile positions
+    /// with the hbo19 sampler, so frame 0 is already blue; the `hbo19` method always uses them).
     #[arg(long, default_value = "random")]
     pub initial_seeds: String,
 }
