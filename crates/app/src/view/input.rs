@@ -266,7 +266,8 @@ mod tests {
         let mut i = Input::new(&camera());
         assert_eq!(i.handle(press(Key::Char('1'))), Some(Action::Method(0)));
         assert_eq!(i.handle(press(Key::Char('6'))), Some(Action::Method(5)));
-        assert_eq!(i.handle(press(Key::Char('7'))), None);
+        assert_eq!(i.handle(press(Key::Char('7'))), Some(Action::Method(6)));
+        assert_eq!(i.handle(press(Key::Char('8'))), None);
         assert_eq!(i.handle(press(Key::Char('b'))), Some(Action::Block(1)));
         assert_eq!(i.handle(press(Key::Char('B'))), Some(Action::Block(-1)));
         assert_eq!(i.handle(press(Key::Char('+'))), Some(Action::Spp(1)));
