@@ -21,7 +21,7 @@ vec3 g_environment;
 // (first MASK_DIMS dimensions, each read at its own fixed offset so dimensions decorrelate,
 // rotated by the golden ratio per sample for spp > 1), else from the seeded sampler.
 float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
-    float x = to_unit(sample_bits(TRACE_SAMPLER_KIND, seed, index, dim));
+    float x = to_unit(TRACE_SAMPLE_BITS(seed, index, dim));
 #if TRACE_MASK
     if (P.mask_mode != MASK_MODE_NONE && dim < MASK_DIMS) {
         uint n = P.mask_size;

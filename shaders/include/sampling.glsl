@@ -1,5 +1,5 @@
 // Per-pixel samplers driven only by (seed, sample index, dimension).
-// CPU twins: crates/sampling/src/{sobol,r2,lib}.rs (same names, same bits).
+// CPU twins: crates/sampling/src/{sobol,r2,hbo19,lib}.rs (same names, same bits).
 #ifndef SAMPLING_GLSL
 #define SAMPLING_GLSL
 #include "rng.glsl"
@@ -69,8 +69,30 @@ uint r2_bits(uint seed, uint index, uint dim) {
     return offset + index * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
 }
 
+// HBO+19 keyed Owen-Sobol (crates/sampling/src/hbo19.rs): `key` = (scramble, rank) of the
+// pair holding `dim`; dimensions past the `pairs` optimised pairs are plain Owen-Sobol.
+uint hbo19_bits(uvec2 key, uint pairs, uint seed, uint index, uint dim) {
+    if (dim >= 2u * pairs) return owen_sobol_bits(seed, index, dim);
+    uint d = dim & 1u;
+    uint shuffled = nested_uniform_scramble(index ^ key.y, key.x);
+    return bitfieldReverse(owen_hash(sobol_reversed(shuffled, d), hash_combine(key.x, d + 1u)));
+}
+
+#ifdef HBO19_KEYS
+// HBO19_KEYS names the includer's uvec2 key buffer: [0] = (tile edge, pairs), then the keys
+// at 1 + (tile position * pairs + pair); the seed is the tile position (KeyTable::bits).
+uint hbo19_lookup_bits(uint seed, uint index, uint dim) {
+    uvec2 hdr = HBO19_KEYS[0];
+    uint pair = min(dim / 2u, hdr.y - 1u);
+    uvec2 key = HBO19_KEYS[1u + (seed % (hdr.x * hdr.x)) * hdr.y + pair];
+    return hbo19_bits(key, hdr.y, seed, index, dim);
+}
+#endif
+
+// SAMPLER_HBO19 needs a key table (hbo19_lookup_bits); without one it is plain Owen-Sobol,
+// as Samples::bits without keys.
 uint sample_bits(uint kind, uint seed, uint index, uint dim) {
-    if (kind == SAMPLER_SOBOL) return owen_sobol_bits(seed, index, dim);
+    if (kind == SAMPLER_SOBOL || kind == SAMPLER_HBO19) return owen_sobol_bits(seed, index, dim);
     if (kind == SAMPLER_R2) return r2_bits(seed, index, dim);
     return hash3(seed, index, dim);
 }

@@ -1,19 +1,23 @@
 #version 460
-// GLSL unit run: sample_bits for every sampler on (seed, index, dim) triples from a buffer.
+// GLSL unit run: sample_bits for every sampler, and hbo19 with a key table, on
+// (seed, index, dim) triples from a buffer.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-#include "sampling.glsl"
 
 layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { uint count; } pc;
 layout(set = 0, binding = 0, scalar) readonly buffer In { uvec3 inputs[]; };
-layout(set = 0, binding = 1, scalar) writeonly buffer Out { uvec3 results[]; };
+layout(set = 0, binding = 1, scalar) writeonly buffer Out { uvec4 results[]; };
+layout(set = 0, binding = 2, scalar) readonly buffer Keys { uvec2 keys[]; };
+#define HBO19_KEYS keys
+#include "sampling.glsl"
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= pc.count) return;
     uvec3 q = inputs[i];
-    results[i] = uvec3(sample_bits(SAMPLER_WHITE, q.x, q.y, q.z),
+    results[i] = uvec4(sample_bits(SAMPLER_WHITE, q.x, q.y, q.z),
                        sample_bits(SAMPLER_SOBOL, q.x, q.y, q.z),
-                       sample_bits(SAMPLER_R2, q.x, q.y, q.z));
+                       sample_bits(SAMPLER_R2, q.x, q.y, q.z),
+                       hbo19_lookup_bits(q.x, q.y, q.z));
 }

@@ -11,6 +11,8 @@
 //                       TraceParams field: chosen at run time)
 //   TRACE_MASK          1: blue-noise mask modes (TraceParams::mask_mode) supported; 0: mask off
 //   TRACE_TEXTURES      1: material textures and uvs; 0: texture indices ignored (no textures)
+//   TRACE_HBO19         1: samples from hbo19_lookup_bits with the key table at binding 11
+//                       (optional, default 0: sample_bits(TRACE_SAMPLER_KIND, ...))
 // The variants differ only in dead code: llvmpipe runs both sides of every branch, so
 // branches that a method or scene never takes are compiled out (crates/render picks the
 // variant; see passes.rs).
@@ -20,7 +22,18 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "generated/scene.glsl"
 #include "generated/params.glsl"
+// HBO+19 keys (hbo19_lookup_bits; one element (1, 1) when the method has none).
+layout(set = 0, binding = 12, scalar) readonly buffer Hbo19Keys { uvec2 hbo19_keys[]; };
+#define HBO19_KEYS hbo19_keys
 #include "sampling.glsl"
+#ifndef TRACE_HBO19
+#define TRACE_HBO19 0
+#endif
+#if TRACE_HBO19
+#define TRACE_SAMPLE_BITS(seed, index, dim) hbo19_lookup_bits(seed, index, dim)
+#else
+#define TRACE_SAMPLE_BITS(seed, index, dim) sample_bits(TRACE_SAMPLER_KIND, seed, index, dim)
+#endif
 
 layout(local_size_x = TRACE_GROUP_X, local_size_y = TRACE_GROUP_Y) in;
 layout(push_constant, scalar) uniform Push { TraceParams pc; };
@@ -68,7 +81,8 @@ void main() {
     g_light_count = scene.light_count;
     g_environment = scene.environment;
     // Keeps every binding in every variant, so all variants share one binding table.
-    int keep = imageSize(scene_textures).x + imageSize(scene_texels).x + mask.length();
+    int keep = imageSize(scene_textures).x + imageSize(scene_texels).x + mask.length() +
+               hbo19_keys.length();
     uvec2 px = gl_GlobalInvocationID.xy;
     bool inside = px.x < P.width && px.y < P.height;
     px = min(px, uvec2(P.width, P.height) - 1u);

@@ -1,6 +1,7 @@
 //! GLSL sampling.glsl == Rust blueshift_sampling for every sampler, bit for bit.
 use crate::{Gpu, groups_for};
 use blueshift_device::{Binding, Buffer};
+use blueshift_sampling::hbo19::KeyTable;
 use blueshift_sampling::rng::hash3;
 use blueshift_sampling::{Sampler, Samples};
 
@@ -12,9 +13,18 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
         &[
             Binding::storage(0, "inputs"),
             Binding::storage(1, "results"),
+            Binding::storage(2, "keys"),
         ],
         4,
     );
+    // An 8x8 tile of hashed HBO+19 keys (4 pairs, spp 16): the twins must agree on the lookup
+    // (seed mod tile^2, pair) and on the fallback past dimension 8, whatever the keys are.
+    let (tile, spp, pairs) = (8u32, 16u32, 4u32);
+    let keys = (0..tile * tile * pairs)
+        .map(|i| [hash3(i, 5, 6), hash3(i, 7, 8) % spp])
+        .collect();
+    let table = KeyTable::new(tile, spp, pairs, keys).unwrap();
+    let keyb = Buffer::from_slice(gpu.dev(), "sampling.keys", &table.gpu_words()).unwrap();
     let n: u32 = 1 << 18;
     // Random seeds, indices spanning small and large values, dimensions 0..64.
     let inputs: Vec<[u32; 3]> = (0..n)
@@ -27,18 +37,18 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
         })
         .collect();
     let inb = Buffer::from_slice(gpu.dev(), "sampling.inputs", &inputs).unwrap();
-    let out = gpu.output::<[u32; 3]>("sampling.results", n as usize);
+    let out = gpu.output::<[u32; 4]>("sampling.results", n as usize);
     gpu.run(
         &p,
-        &[(&inb).into(), (&out).into()],
+        &[(&inb).into(), (&out).into(), (&keyb).into()],
         bytemuck::bytes_of(&n),
         [groups_for(n, 64), 1, 1],
     );
-    let got = out.read::<[u32; 3]>().unwrap();
-    let s = Samples::default();
+    let got = out.read::<[u32; 4]>().unwrap();
+    let s = Samples::with_keys(table);
     for (q, g) in inputs.iter().zip(&got) {
-        let want =
-            [Sampler::White, Sampler::Sobol, Sampler::R2].map(|m| s.bits(m, q[0], q[1], q[2]));
+        let want = [Sampler::White, Sampler::Sobol, Sampler::R2, Sampler::Hbo19]
+            .map(|m| s.bits(m, q[0], q[1], q[2]));
         assert_eq!(*g, want, "seed {} index {} dim {}", q[0], q[1], q[2]);
     }
 }

@@ -30,6 +30,8 @@ pub enum Command {
     Dither(DitherArgs),
     /// Retargeting permutation of a mask for a per-frame shift.
     Retarget(RetargetArgs),
+    /// HBO+19 per-pixel sampler keys, optimised so that errors are blue in screen space.
+    Keys(KeysArgs),
     /// Figures: white / blue / Bayer textures, spectra, radial profiles, dithered gradient.
     Figures(FiguresArgs),
     /// Regenerate every committed asset and write the MANIFEST.
@@ -192,6 +194,38 @@ pub struct RetargetArgs {
     pub png: Option<PathBuf>,
 }
 
+/// `keys` flags.
+#[derive(Debug, clap::Args)]
+pub struct KeysArgs {
+    /// Tile edge (power of two, 16..=256).
+    #[arg(long, default_value_t = 128)]
+    pub tile: u32,
+    /// Comma-separated sample counts (powers of two); one table each.
+    #[arg(long, default_value = "1")]
+    pub spp: String,
+    /// Optimised sample dimensions (even: pairs); later ones fall back to Owen-Sobol.
+    #[arg(long, default_value_t = 8)]
+    pub dims: u32,
+    /// Test integrands per dimension pair (half Heaviside steps, half Gaussians).
+    #[arg(long, default_value_t = 16)]
+    pub integrands: u32,
+    /// Annealing proposals per pixel.
+    #[arg(long, default_value_t = 128)]
+    pub iterations: u32,
+    /// Temperature steps.
+    #[arg(long, default_value_t = 64)]
+    pub rounds: u32,
+    /// Error-distance scale of the energy (smaller: only near-equal errors repel).
+    #[arg(long, default_value_t = 1.0)]
+    pub sigma_s: f32,
+    /// PRNG seed (integrands, initial keys, proposals).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output directory: writes `hbo19_t<tile>_spp<n>.bin` per spp.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
 /// `figures` flags.
 #[derive(Debug, clap::Args)]
 pub struct FiguresArgs {
@@ -234,6 +268,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Spectrum(a) => commands::spectrum::spectrum(&a),
         Command::Dither(a) => commands::dither::dither(&a),
         Command::Retarget(a) => commands::retarget::retarget(&a),
+        Command::Keys(a) => commands::keys::keys(&a),
         Command::Figures(a) => commands::figures::figures(&a),
         Command::Assets(a) => commands::assets::assets(&a),
         Command::Manifest(a) => commands::assets::manifest(&a),

@@ -34,6 +34,8 @@ fn manifest_lists_every_required_asset() {
         "retarget/bn32_s24_18_r6.bin",
         "retarget/bn64_s48_36_r6.bin",
         "retarget/bn128_s97_73_r6.bin",
+        "keys/hbo19_t128_spp1.bin",
+        "keys/hbo19_t128_spp16.bin",
     ] {
         assert!(paths.iter().any(|q| q == p), "{p} missing from MANIFEST");
     }

@@ -3,7 +3,7 @@ use crate::GpuOpts;
 use crate::output::{exr_rgb32f, png_rgba8, prepare_dir, write_atomic};
 use anyhow::{Context, Result, bail};
 use blueshift_render::{
-    CameraPath, Method, MethodAssets, RenderConfig, Renderer, default_assets_dir,
+    CameraPath, Method, MethodAssets, RenderConfig, Renderer, SeedMap, default_assets_dir,
 };
 use blueshift_sampling::Sampler;
 use blueshift_scene::Scene;
@@ -28,9 +28,13 @@ pub struct SceneArgs {
     /// Sorting block edge (2..=8).
     #[arg(long, default_value_t = 4)]
     pub block: u32,
-    /// Seeded sampler (white, sobol, r2); default depends on the method.
+    /// Seeded sampler (white, sobol, r2, hbo19); default depends on the method.
     #[arg(long)]
     pub sampler: Option<String>,
+    /// Frame-0 seed map of sort / sort-retarget: random, or hbo19 (HBO+19 tile positions with
+    /// the hbo19 sampler, so that they start from blue noise).
+    #[arg(long, default_value = "random")]
+    pub initial_seeds: String,
     /// Directory with masks and retarget tables.
     #[arg(long)]
     pub assets: Option<PathBuf>,
@@ -42,7 +46,7 @@ pub struct RenderArgs {
     pub scene: SceneArgs,
     #[arg(long, default_value_t = 16)]
     pub frames: u32,
-    /// white, white-fixed, sobol, mask-r2, stbn, sort, sort-retarget.
+    /// white, white-fixed, sobol, hbo19, mask-r2, stbn, sort, sort-retarget.
     #[arg(long, default_value = "sort-retarget")]
     pub method: String,
     /// static, pan:PX (image-space pan, px/frame), orbit:DEG (deg/frame), or a keyframe JSON file.
@@ -92,19 +96,23 @@ pub fn load_scene(spec: &str) -> Result<Scene> {
 
 pub fn config(a: &SceneArgs, method: &str) -> Result<RenderConfig> {
     let method: Method = method.parse().map_err(anyhow::Error::msg)?;
-    let sampler = match &a.sampler {
-        None => None,
-        Some(s) => Some(
-            Sampler::from_name(s)
-                .with_context(|| format!("unknown sampler '{s}' (known: white, sobol, r2)"))?,
-        ),
-    };
+    let sampler =
+        match &a.sampler {
+            None => None,
+            Some(s) => Some(Sampler::from_name(s).with_context(|| {
+                format!("unknown sampler '{s}' (known: white, sobol, r2, hbo19)")
+            })?),
+        };
     Ok(RenderConfig {
         spp: a.spp,
         bounces: a.bounces,
         block: a.block,
         method,
         sampler,
+        seed_map: a
+            .initial_seeds
+            .parse::<SeedMap>()
+            .map_err(|e| anyhow::anyhow!("--initial-seeds: {e}"))?,
         ..RenderConfig::new(a.width, a.height)
     })
 }

@@ -1,6 +1,7 @@
 //! The precomputed textures the methods need, loaded from `assets/`.
 use crate::{RenderError, Result};
 use blueshift_analysis::assets::{load_mask, load_retarget, load_stbn};
+use blueshift_sampling::hbo19::KeyTable;
 use std::path::{Path, PathBuf};
 
 /// Mask tile, retarget table and spatio-temporal mask, flattened for upload.
@@ -18,6 +19,9 @@ pub struct MethodAssets {
     pub stbn_n: u32,
     pub stbn_frames: u32,
     pub stbn: Vec<u32>,
+    /// HBO+19 key tables of one tile, one per sample count, ascending spp (may be empty:
+    /// then the `hbo19` sampler is unavailable).
+    pub keys: Vec<KeyTable>,
 }
 
 /// `BLUESHIFT_ASSETS`, else the nearest `assets/` (holding a MANIFEST) above the running cargo
@@ -46,14 +50,70 @@ fn asset_err(_path: &Path, e: impl std::fmt::Display) -> RenderError {
 }
 
 impl MethodAssets {
-    /// Loads the 64x64 mask, its retarget table and the 64x64xT spatio-temporal mask.
+    /// Loads the 64x64 mask, its retarget table, the 64x64xT spatio-temporal mask and the
+    /// HBO+19 key tables `keys/hbo19_*.bin`.
     pub fn load(dir: &Path) -> Result<Self> {
-        Self::load_files(
+        let a = Self::load_files(
             &dir.join("masks/bn64.r16"),
             &dir.join("retarget/bn64_s48_36_r6.bin"),
             &dir.join("masks/stbn64x32.r16"),
             64,
-        )
+        )?;
+        a.with_keys_dir(&dir.join("keys"))
+    }
+
+    /// Adds every `hbo19_*.bin` key table of `dir` (none if `dir` does not exist). The tables
+    /// must share tile and pairs (the seed map depends on the tile) and differ in spp.
+    pub fn with_keys_dir(mut self, dir: &Path) -> Result<Self> {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return Ok(self);
+        };
+        let mut paths: Vec<_> = entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| {
+                p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with("hbo19_") && n.ends_with(".bin"))
+            })
+            .collect();
+        paths.sort();
+        let mut keys = Vec::new();
+        for p in &paths {
+            keys.push(KeyTable::load(p).map_err(|e| RenderError::Asset(e.to_string()))?);
+        }
+        self.set_keys(keys)?;
+        Ok(self)
+    }
+
+    /// Replaces the key tables after checking they fit together.
+    pub fn set_keys(&mut self, mut keys: Vec<KeyTable>) -> Result<()> {
+        keys.sort_by_key(|k| k.spp);
+        if let Some(first) = keys.first() {
+            for k in &keys[1..] {
+                if (k.tile, k.pairs) != (first.tile, first.pairs) {
+                    return Err(RenderError::Asset(format!(
+                        "HBO+19 key tables disagree: tile {} / {} pairs vs tile {} / {} pairs",
+                        first.tile, first.pairs, k.tile, k.pairs
+                    )));
+                }
+            }
+            if keys.windows(2).any(|w| w[0].spp == w[1].spp) {
+                return Err(RenderError::Asset(
+                    "two HBO+19 key tables for the same spp".into(),
+                ));
+            }
+        }
+        self.keys = keys;
+        Ok(())
+    }
+
+    /// The key table for `spp`: the largest spp not above it, else the smallest.
+    pub fn keys_for(&self, spp: u32) -> Option<&KeyTable> {
+        self.keys
+            .iter()
+            .rev()
+            .find(|k| k.spp <= spp)
+            .or(self.keys.first())
     }
 
     /// Loads explicit files; the table must be made for a mask of the same size.
@@ -84,6 +144,7 @@ impl MethodAssets {
             stbn_n: v.n as u32,
             stbn_frames: v.t as u32,
             stbn: v.ranks.iter().map(|&r| r as u32).collect(),
+            keys: Vec::new(),
         })
     }
 }

@@ -1,5 +1,6 @@
-//! [`RenderConfig`]: what to render and how, checked against the device limits.
-use crate::{Method, RenderError, Result, TRACE_LOOP_GUARD};
+//! [`RenderConfig`]: what to render and how, checked against the device limits before
+//! anything is allocated.
+use crate::{Method, RenderError, Result, SeedMap, TRACE_LOOP_GUARD};
 use blueshift_device::Device;
 use blueshift_sampling::Sampler;
 
@@ -30,6 +31,8 @@ pub struct RenderConfig {
     /// A frame whose trace pass ran this many loop iterations in one SIMD batch is an error
     /// ([`RenderError::LoopLimit`]); default [`TRACE_LOOP_GUARD`].
     pub loop_guard: u32,
+    /// The seed map of frame 0 (the `hbo19` method always uses [`SeedMap::Hbo19`]).
+    pub seed_map: SeedMap,
 }
 
 impl RenderConfig {
@@ -48,7 +51,23 @@ impl RenderConfig {
             view_size: None,
             no_jitter: false,
             loop_guard: TRACE_LOOP_GUARD,
+            seed_map: SeedMap::Random,
         }
+    }
+
+    /// Whether seeds are HBO+19 tile positions: always for `hbo19`; for the permutation
+    /// methods if asked (the others keep their own seeds, so baselines stay what they are).
+    pub fn tile_seeds(&self) -> bool {
+        self.method == Method::Hbo19 || (self.seed_map == SeedMap::Hbo19 && self.method.sorts())
+    }
+
+    /// The seeded sampler in effect.
+    pub fn effective_sampler(&self) -> Sampler {
+        self.sampler.unwrap_or(if self.tile_seeds() {
+            Sampler::Hbo19
+        } else {
+            self.method.default_sampler()
+        })
     }
 
     /// Checks every user-controlled value against its range and the device limits.

@@ -22,6 +22,7 @@ mod images;
 mod method;
 mod motion;
 mod passes;
+mod seeds;
 mod upload;
 
 pub use assets::{MethodAssets, default_assets_dir};
@@ -31,6 +32,7 @@ pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
 pub use method::Method;
 pub use passes::{LLVMPIPE_LOOP_LIMIT, TRACE_BINDINGS, TRACE_LOOP_GUARD, TraceVariant};
+pub use seeds::{SeedMap, initial_seeds, tile_seeds};
 pub use upload::SceneBuffers;
 
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
@@ -41,6 +43,7 @@ use blueshift_layout::params::{
 use blueshift_permute::{PermutePasses, Screen};
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use passes::ImagePasses;
+use seeds::{key_words, seeds_of};
 
 /// Errors of the renderer.
 #[derive(Debug, thiserror::Error)]
@@ -108,6 +111,9 @@ pub struct Renderer {
     accum: Buffer,
     ldr: Buffer,
     mask: Buffer,
+    /// The HBO+19 key table for the current spp (GPU layout of `KeyTable::gpu_words`).
+    keys: Buffer,
+    keys_spp: Option<u32>,
     stbn: Buffer,
     table: Buffer,
     assets: MethodAssets,
@@ -130,13 +136,6 @@ impl std::fmt::Debug for Renderer {
     }
 }
 
-/// The initial seed map: distinct for every padded pixel (pcg_hash is a bijection on u32).
-pub fn initial_seeds(count: usize, sequence: u32) -> Vec<u32> {
-    use blueshift_sampling::rng::pcg_hash;
-    let salt = pcg_hash(sequence ^ 0xb5ad_4ece);
-    (0..count as u32).map(|i| pcg_hash(i ^ salt)).collect()
-}
-
 impl Renderer {
     pub fn new(
         dev: &Device,
@@ -150,7 +149,8 @@ impl Renderer {
         let image_passes = ImagePasses::new(dev)?;
         let scene_images = SceneImages::new(dev, &image_passes, &gpu_scene)?;
         let screen = Screen::new(cfg.width, cfg.height, assets.n)?;
-        let initial = initial_seeds(screen.seed_count(), cfg.sequence);
+        let initial = seeds_of(&cfg, &screen, assets)?;
+        let (words, keys_spp) = key_words(&cfg, assets)?;
         let pixels = cfg.width as u64 * cfg.height as u64;
         let host = MemoryLocation::GpuToCpu;
         let seeds = [
@@ -174,6 +174,8 @@ impl Renderer {
             accum: Buffer::new(dev, "frame.accum", pixels * 16, host)?,
             ldr: Buffer::new(dev, "frame.ldr", pixels * 4, host)?,
             mask: Buffer::from_slice(dev, "assets.mask", &assets.mask)?,
+            keys: Buffer::from_slice(dev, "assets.hbo19_keys", &words)?,
+            keys_spp,
             stbn: Buffer::from_slice(dev, "assets.stbn", &assets.stbn)?,
             table: Buffer::from_slice(dev, "assets.retarget", &assets.table)?,
             assets: assets.clone(),
@@ -235,9 +237,14 @@ impl Renderer {
         Ok(())
     }
 
-    /// Switches method (and resets the sequence).
+    /// Switches method (and resets the sequence, whose seed map may change with it).
     pub fn set_method(&mut self, method: Method) -> Result<()> {
-        self.cfg.method = method;
+        let cfg = RenderConfig {
+            method,
+            ..self.cfg.clone()
+        };
+        self.initial_seeds = seeds_of(&cfg, &self.screen, &self.assets)?;
+        self.cfg = cfg;
         self.reset()
     }
 
@@ -250,6 +257,12 @@ impl Renderer {
             ..self.cfg.clone()
         };
         cfg.validate(&self.dev)?;
+        let (words, keys_spp) = key_words(&cfg, &self.assets)?;
+        if keys_spp != self.keys_spp {
+            // Tables of one asset set share tile and pairs: same size, seeds stay valid.
+            self.keys = Buffer::from_slice(&self.dev, "assets.hbo19_keys", &words)?;
+            self.keys_spp = keys_spp;
+        }
         self.cfg = cfg;
         self.accumulated = 0;
         Ok(())
@@ -266,7 +279,7 @@ impl Renderer {
         if m == Method::White || c.frame_salt {
             flags |= TRACE_FLAG_SALT_FRAME;
         }
-        if m == Method::Sobol {
+        if m.advances_index() {
             flags |= TRACE_FLAG_ADVANCE_INDEX;
         }
         if c.no_jitter {
@@ -295,7 +308,7 @@ impl Renderer {
             sample_index: 0,
             sample_count: 1,
             max_bounces: c.bounces,
-            sampler_kind: c.sampler.unwrap_or(m.default_sampler()) as u32,
+            sampler_kind: c.effective_sampler() as u32,
             flags,
             mask_mode,
             mask_size,
@@ -334,6 +347,7 @@ impl Renderer {
             &self.images,
             &self.seeds[cur],
             mask,
+            &self.keys,
             &self.estimate,
             &self.trace_status,
             self.dispatch_vertices,

@@ -10,6 +10,9 @@ pub enum Method {
     WhiteFixed,
     /// Owen-scrambled Sobol, fixed per-pixel scramble seeds, sample index advancing per frame.
     Sobol,
+    /// HBO+19: Owen-Sobol with per-pixel keys optimised offline so that frame 0's error is
+    /// already blue; fixed tile-position seeds, sample index advancing per frame.
+    Hbo19,
     /// Blue-noise mask (void-and-cluster) offsets the first dimensions, shifted by R2 per frame.
     MaskR2,
     /// Spatio-temporal blue-noise mask slices in the same role.
@@ -28,10 +31,11 @@ pub enum Method {
 }
 
 impl Method {
-    pub const ALL: [Method; 10] = [
+    pub const ALL: [Method; 11] = [
         Method::White,
         Method::WhiteFixed,
         Method::Sobol,
+        Method::Hbo19,
         Method::MaskR2,
         Method::Stbn,
         Method::Sort,
@@ -46,6 +50,7 @@ impl Method {
             Method::White => "white",
             Method::WhiteFixed => "white-fixed",
             Method::Sobol => "sobol",
+            Method::Hbo19 => "hbo19",
             Method::MaskR2 => "mask-r2",
             Method::Stbn => "stbn",
             Method::Sort => "sort",
@@ -69,6 +74,7 @@ impl Method {
     pub fn default_sampler(self) -> Sampler {
         match self {
             Method::Sobol => Sampler::Sobol,
+            Method::Hbo19 => Sampler::Hbo19,
             _ => Sampler::White,
         }
     }
@@ -76,6 +82,11 @@ impl Method {
     /// Whether the sorting pass runs.
     pub fn sorts(self) -> bool {
         self == Method::Sort || self.retargets()
+    }
+
+    /// Whether the sample index advances with the frame (a progressive sequence per pixel).
+    pub fn advances_index(self) -> bool {
+        matches!(self, Method::Sobol | Method::Hbo19)
     }
 
     /// Whether the retargeting pass runs.

@@ -75,7 +75,7 @@ pub struct TraceVariant {
 impl TraceVariant {
     /// The variant for these push constants over these scene images.
     pub fn of(p: &TraceParams, scene: &SceneImages) -> Result<Self> {
-        let sampler = [Sampler::White, Sampler::Sobol, Sampler::R2]
+        let sampler = Sampler::ALL
             .into_iter()
             .find(|&s| s as u32 == p.sampler_kind)
             .ok_or_else(|| RenderError::Invalid(format!("sampler kind {}", p.sampler_kind)))?;
@@ -88,7 +88,7 @@ impl TraceVariant {
 
     /// The shader name, `trace/variants/<sampler>[_mask][_tex]`.
     pub fn shader(self) -> &'static str {
-        const NAMES: [&str; 12] = [
+        const NAMES: [&str; 16] = [
             "trace/variants/white",
             "trace/variants/white_tex",
             "trace/variants/white_mask",
@@ -101,11 +101,16 @@ impl TraceVariant {
             "trace/variants/r2_tex",
             "trace/variants/r2_mask",
             "trace/variants/r2_mask_tex",
+            "trace/variants/hbo19",
+            "trace/variants/hbo19_tex",
+            "trace/variants/hbo19_mask",
+            "trace/variants/hbo19_mask_tex",
         ];
         let s = match self.sampler {
             Sampler::White => 0,
             Sampler::Sobol => 1,
             Sampler::R2 => 2,
+            Sampler::Hbo19 => 3,
         };
         NAMES[s * 4 + usize::from(self.mask) * 2 + usize::from(self.textures)]
     }
@@ -127,7 +132,7 @@ fn pipeline(
 }
 
 /// Bindings of every path-tracer variant (and of the all-runtime `trace/trace`).
-pub const TRACE_BINDINGS: [Binding; 12] = [
+pub const TRACE_BINDINGS: [Binding; 13] = [
     Binding::image(0, "scene_nodes"),
     Binding::image(1, "scene_triangles"),
     Binding::image(2, "scene_shading"),
@@ -140,6 +145,7 @@ pub const TRACE_BINDINGS: [Binding; 12] = [
     Binding::storage(9, "mask"),
     Binding::storage(10, "estimate"),
     Binding::storage(11, "trace_status"),
+    Binding::storage(12, "hbo19_keys"),
 ];
 
 impl ImagePasses {
@@ -199,6 +205,7 @@ impl ImagePasses {
         images: &SceneImages,
         seeds: &Buffer,
         mask: &Buffer,
+        keys: &Buffer,
         estimate: &Buffer,
         status: &Buffer,
         vertices: u32,
@@ -212,22 +219,19 @@ impl ImagePasses {
                 sample_count: per_dispatch.min(p.spp - first),
                 ..*p
             };
-            let out = [estimate, status];
-            Self::trace_one(rec, pipeline, &p, scene, images, seeds, mask, out)?;
+            let bufs = [seeds, mask, estimate, status, keys];
+            Self::trace_one(rec, pipeline, &p, scene, images, bufs)?;
         }
         Ok(per_dispatch)
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn trace_one(
         rec: &mut Recorder,
         pipeline: &ComputePipeline,
         p: &TraceParams,
         s: &SceneBuffers,
         i: &SceneImages,
-        seeds: &Buffer,
-        mask: &Buffer,
-        [estimate, status]: [&Buffer; 2],
+        [seeds, mask, estimate, status, keys]: [&Buffer; 5],
     ) -> Result<()> {
         rec.dispatch(
             pipeline,
@@ -244,6 +248,7 @@ impl ImagePasses {
                 mask.into(),
                 estimate.into(),
                 status.into(),
+                keys.into(),
             ],
             bytemuck::bytes_of(p),
             [

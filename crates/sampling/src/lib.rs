@@ -2,6 +2,7 @@
 //! function here has a GLSL function of the same name computing the same bits; GPU tests
 //! compare them. All randomness is a pure function of (seed, sample index, dimension).
 
+pub mod hbo19;
 pub mod r2;
 pub mod rng;
 pub mod sobol;
@@ -16,16 +17,20 @@ pub enum Sampler {
     Sobol = 1,
     /// R2 with a per-seed Cranley-Patterson rotation.
     R2 = 2,
+    /// Owen-Sobol with per-pixel keys from an optimised tile (HBO+19, see [`hbo19`]); the seed
+    /// is the tile position whose keys the pixel uses. Without a key table: plain Owen-Sobol.
+    Hbo19 = 3,
 }
 
 impl Sampler {
-    pub const ALL: [Sampler; 3] = [Sampler::White, Sampler::Sobol, Sampler::R2];
+    pub const ALL: [Sampler; 4] = [Sampler::White, Sampler::Sobol, Sampler::R2, Sampler::Hbo19];
 
     pub fn name(self) -> &'static str {
         match self {
             Sampler::White => "white",
             Sampler::Sobol => "sobol",
             Sampler::R2 => "r2",
+            Sampler::Hbo19 => "hbo19",
         }
     }
 
@@ -34,27 +39,41 @@ impl Sampler {
     }
 }
 
-/// A sampler evaluator holding the Sobol direction numbers.
+/// A sampler evaluator holding the Sobol direction numbers (and HBO+19 keys, if any).
 #[derive(Debug, Clone)]
 pub struct Samples {
     dirs: [[u32; 32]; 4],
+    keys: Option<std::sync::Arc<hbo19::KeyTable>>,
 }
 
 impl Default for Samples {
     fn default() -> Self {
         Self {
             dirs: sobol::direction_numbers(),
+            keys: None,
         }
     }
 }
 
 impl Samples {
+    /// An evaluator whose `hbo19` sampler uses `keys`.
+    pub fn with_keys(keys: hbo19::KeyTable) -> Self {
+        Self {
+            keys: Some(std::sync::Arc::new(keys)),
+            ..Self::default()
+        }
+    }
+
     /// The sample as a 32-bit fraction (the GLSL `sample_bits`).
     pub fn bits(&self, sampler: Sampler, seed: u32, index: u32, dim: u32) -> u32 {
         match sampler {
             Sampler::White => rng::hash3(seed, index, dim),
             Sampler::Sobol => sobol::owen_sobol_bits(seed, index, dim, &self.dirs),
             Sampler::R2 => r2::r2_bits(seed, index, dim),
+            Sampler::Hbo19 => match &self.keys {
+                Some(k) => k.bits(seed, index, dim, &self.dirs),
+                None => sobol::owen_sobol_bits(seed, index, dim, &self.dirs),
+            },
         }
     }
 

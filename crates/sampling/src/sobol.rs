@@ -100,22 +100,23 @@ pub fn owen_sobol(seed: u32, index: u32, dim: u32, dirs: &[[u32; 32]; 4]) -> f32
     crate::rng::to_unit(owen_sobol_bits(seed, index, dim, dirs))
 }
 
+/// Every elementary interval of area 2^-m holds exactly one of the first 2^m points.
+#[cfg(test)]
+pub(crate) fn is_0m2_net(points: &[(u32, u32)], m: u32) -> bool {
+    (0..=m).all(|k| {
+        let (bx, by) = (k, m - k);
+        let mut seen = vec![false; 1 << m];
+        points.iter().all(|&(x, y)| {
+            // u64 so that a shift by 32 (zero bits on an axis) is defined and gives 0.
+            let cell = ((x as u64 >> (32 - bx)) << by | (y as u64 >> (32 - by))) as usize;
+            !std::mem::replace(&mut seen[cell], true)
+        })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Every elementary interval of area 2^-m holds exactly one of the first 2^m points.
-    fn is_0m2_net(points: &[(u32, u32)], m: u32) -> bool {
-        (0..=m).all(|k| {
-            let (bx, by) = (k, m - k);
-            let mut seen = vec![false; 1 << m];
-            points.iter().all(|&(x, y)| {
-                // u64 so that a shift by 32 (zero bits on an axis) is defined and gives 0.
-                let cell = ((x as u64 >> (32 - bx)) << by | (y as u64 >> (32 - by))) as usize;
-                !std::mem::replace(&mut seen[cell], true)
-            })
-        })
-    }
 
     #[test]
     fn sobol_dims_0_1_are_0m2_nets_unscrambled() {

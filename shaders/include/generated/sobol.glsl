@@ -12,5 +12,6 @@ const uint SOBOL_GROUP_DIMS = 4u;
 const uint SAMPLER_WHITE = 0u;
 const uint SAMPLER_SOBOL = 1u;
 const uint SAMPLER_R2 = 2u;
+const uint SAMPLER_HBO19 = 3u;
 
 #endif

@@ -83,6 +83,19 @@ pub fn jobs(root: &str) -> Vec<Job> {
             root,
         ),
         job(
+            "keys --tile 128 --spp 1,2,4,8,16 --dims 8 --iterations 128 --rounds 64 --seed 19 \
+             --out {root}/keys",
+            19,
+            &[
+                "keys/hbo19_t128_spp1.bin",
+                "keys/hbo19_t128_spp2.bin",
+                "keys/hbo19_t128_spp4.bin",
+                "keys/hbo19_t128_spp8.bin",
+                "keys/hbo19_t128_spp16.bin",
+            ],
+            root,
+        ),
+        job(
             "scene --name all --out {root}/scenes",
             0,
             &[

@@ -3,6 +3,7 @@
 pub mod assets;
 pub(crate) mod dither;
 pub(crate) mod figures;
+pub mod keys;
 pub(crate) mod masks;
 pub(crate) mod retarget;
 pub(crate) mod spectrum;

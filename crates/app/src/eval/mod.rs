@@ -10,7 +10,7 @@ use crate::output::prepare_dir;
 use crate::render::{load_assets, scene_path};
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::Gray;
-use blueshift_render::{CameraPath, Method, RenderConfig, Renderer};
+use blueshift_render::{CameraPath, Method, RenderConfig, Renderer, SeedMap};
 use indicatif::{ProgressBar, ProgressStyle};
 use metrics::{Masks, RunAccumulator, RunMetrics};
 use reference::{RefJob, references};
@@ -65,6 +65,10 @@ pub struct EvalArgs {
     /// and no seed permutation can move it, so it would dominate every metric.
     #[arg(long)]
     pub jitter: bool,
+    /// Frame-0 seed map of sort and sort-retarget: random, or hbo19 (HBO+19 tile positions
+    /// with the hbo19 sampler, so frame 0 is already blue; the `hbo19` method always uses them).
+    #[arg(long, default_value = "random")]
+    pub initial_seeds: String,
 }
 
 fn list<T>(s: &str, what: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>> {
@@ -157,7 +161,12 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
         block: args.block,
         sampler: None,
         assets: args.assets.clone(),
+        initial_seeds: args.initial_seeds.clone(),
     })?;
+    let seed_map: SeedMap = args
+        .initial_seeds
+        .parse()
+        .map_err(|e| anyhow::anyhow!("--initial-seeds: {e}"))?;
     let cache = args.cache.clone().unwrap_or_else(|| {
         std::env::var_os("HOME")
             .map_or(PathBuf::from(".cache"), PathBuf::from)
@@ -205,7 +214,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                 bar.set_message(config.label());
                 for &m in &methods {
                     runs.push(run_method(
-                        &dev, &scene, &assets, args, &config, m, &refs, &bar,
+                        &dev, &scene, &assets, args, &config, m, seed_map, &refs, &bar,
                     )?);
                 }
                 bar.finish_and_clear();
@@ -233,6 +242,7 @@ fn run_method(
     args: &EvalArgs,
     config: &Config,
     method: Method,
+    seed_map: SeedMap,
     refs: &reference::References,
     bar: &ProgressBar,
 ) -> Result<Run> {
@@ -252,6 +262,7 @@ fn run_method(
             sequence: seq,
             no_jitter: !args.jitter,
             view_size: Some(view),
+            seed_map,
             ..RenderConfig::new(w, h)
         };
         let mut r = Renderer::new(dev, scene, assets, cfg)?;

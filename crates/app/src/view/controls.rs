@@ -2,8 +2,8 @@
 use super::input::Action;
 use blueshift_render::{FrameStats, Method};
 
-/// The methods of keys 1-9.
-pub const VIEW_METHODS: [Method; 9] = [
+/// The methods of keys 1-9 and 0.
+pub const VIEW_METHODS: [Method; 10] = [
     Method::White,
     Method::Sobol,
     Method::MaskR2,
@@ -13,6 +13,7 @@ pub const VIEW_METHODS: [Method; 9] = [
     Method::SortRetargetReproject,
     Method::SortRetargetEdges,
     Method::SortRetargetPlus,
+    Method::Hbo19,
 ];
 /// Limits of the interactive controls (the renderer accepts more; these stay interactive).
 pub const MAX_SPP: u32 = 64;
@@ -28,7 +29,7 @@ pub const REFERENCE_SPP: u32 = 4;
 pub struct Settings {
     /// Method of the left (or only) view and of the right view in split-screen.
     pub methods: [Method; 2],
-    /// Which side keys 1-6 set (0 = left/only, 1 = right).
+    /// Which side keys 1-7 set (0 = left/only, 1 = right).
     pub side: usize,
     pub spp: u32,
     pub bounces: u32,
@@ -111,7 +112,7 @@ impl Settings {
         }
     }
 
-    /// The methods as the title shows them; in split-screen the side keys 1-6 set is marked.
+    /// The methods as the title shows them; in split-screen the side keys 1-7 set is marked.
     pub fn method_label(&self) -> String {
         if !self.split {
             return self.methods[0].name().to_string();

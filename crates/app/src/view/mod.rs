@@ -34,6 +34,9 @@ pub struct ViewArgs {
     /// Method of the right side in split-screen.
     #[arg(long, default_value = "white")]
     pub method_b: String,
+    /// Frame-0 seed map: random, or hbo19 (sort / sort-retarget start from HBO+19 blue noise).
+    #[arg(long, default_value = "random")]
+    pub initial_seeds: String,
     /// Start in split-screen (key S).
     #[arg(long)]
     pub split: bool,
@@ -140,6 +143,7 @@ pub fn run(gpu: &GpuOpts, args: &ViewArgs) -> Result<()> {
         block: args.block,
         sampler: None,
         assets: args.assets.clone(),
+        initial_seeds: args.initial_seeds.clone(),
     };
     config(&template, &args.method)?;
     let opts = gpu::Options {
