@@ -1,5 +1,6 @@
-// Path-tracing pass: one invocation per pixel and one path per dispatch (the host dispatches
-// spp times per frame), software BVH traversal over the scene images, glTF BRDF, next-event
+// Path-tracing pass: one invocation per pixel running TraceParams::sample_count paths per
+// dispatch (the host splits a frame's samples into dispatches sized against llvmpipe's loop
+// limit, counted below; see passes.rs), software BVH traversal over the scene images, glTF BRDF, next-event
 // estimation on emissive triangles with MIS (power heuristic) against BRDF sampling, constant
 // environment, Russian roulette. All randomness comes from the pixel's seed in the seed buffer
 // (see sample_dim), so moving seeds moves whole estimates.
@@ -60,8 +61,8 @@ layout(set = 0, binding = 11, scalar) buffer Status { uint trace_status[]; };
 // their maximum once per path vertex (trace_paths), which undercounts the batch only where
 // lanes run different numbers of inner-loop iterations within one vertex (measured: the
 // batch's true count, from a subgroupElect() tick per iteration, was 1.26x..1.46x this on
-// the bundled scenes; that exact tick cost about 5% of the pass, this about 1%). Hence the
-// renderer's guard sits well below the limit (TRACE_LOOP_GUARD).
+// the bundled scenes; that exact tick cost about 10% of the pass's CPU time, this about 2-3%).
+// Hence the renderer's guard sits well below the limit (TRACE_LOOP_GUARD).
 uint g_loop_ticks;
 #define LOOP_TICK g_loop_ticks++
 #define LOOP_SYNC g_loop_ticks = subgroupMax(g_loop_ticks)
