@@ -213,7 +213,7 @@ mod tests {
         }
         assert_eq!((s.block, s.bounces), (2, 1));
         assert_eq!(s.apply(Action::Bounces(1)), Change::Quality);
-        assert_eq!(s.apply(Action::Method(9)), Change::Nothing);
+        assert_eq!(s.apply(Action::Method(VIEW_METHODS.len())), Change::Nothing);
     }
 
     #[test]
