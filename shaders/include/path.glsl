@@ -112,16 +112,22 @@ float light_pdf(GpuLight l, float d, float cos_l) {
 // Next-event estimation: one point on one emissive triangle, MIS-weighted.
 vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
     if (g_light_count == 0u) return vec3(0.0);
+    // The light is chosen with u.x, which is then rescaled into its interval of the power CDF
+    // and reused for the point: direct light is a function of the one dimension pair (u.x, u.y),
+    // so a pair-wise stratified or blue sampler (Sobol, hbo19 keys) stratifies it as a whole.
+    // (u.z is left unused so the dimension layout stays the same.)
     uint lo = 0u, hi = g_light_count - 1u;
-    while (lo < hi) {  // first light with u.z < cdf
+    while (lo < hi) {  // first light with u.x < cdf
         LOOP_TICK;
         uint mid = (lo + hi) / 2u;
-        if (u.z < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
+        if (u.x < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
     }
     GpuLight l = scene_light(lo);
+    float c0 = lo > 0u ? scene_light(max(lo, 1u) - 1u).cdf : 0.0;  // (both sides run)
+    float ux = clamp((u.x - c0) / max(l.cdf - c0, 1e-30), 0.0, 1.0);
     SceneTriangle tri = scene_triangle(l.triangle);
     SceneShading sh = scene_shading_at(l.triangle, TRACE_TEXTURES != 0);
-    float su = sqrt(u.x);
+    float su = sqrt(ux);
     float b1 = 1.0 - su, b2 = u.y * su;
     vec3 q = tri.tri.v0 + b1 * tri.tri.e1 + b2 * tri.tri.e2;
     vec3 to = q - s.p;
