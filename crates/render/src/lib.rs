@@ -22,6 +22,7 @@ mod images;
 mod method;
 mod motion;
 mod passes;
+mod readback;
 mod seeds;
 mod upload;
 
@@ -415,67 +416,6 @@ impl Renderer {
     /// with this before every frame, the output shows single frames.
     pub fn restart_accumulation(&mut self) {
         self.accumulated = 0;
-    }
-
-    /// The device buffer of the tonemapped output (packed RGBA8 per pixel, row-major), for
-    /// passes that read it after [`Self::render_frame`] returned.
-    pub fn ldr_buffer(&self) -> &Buffer {
-        &self.ldr
-    }
-    /// The device buffer of the running mean (`[f32; 4]` per pixel, row-major).
-    pub fn accum_buffer(&self) -> &Buffer {
-        &self.accum
-    }
-
-    /// The raw estimate of the last frame: (r, g, b, luminance) per pixel, row-major.
-    pub fn read_estimate(&self) -> Result<Vec<[f32; 4]>> {
-        Ok(self.estimate.read::<[f32; 4]>()?[..self.pixels()].to_vec())
-    }
-    /// The running mean since the last reset or camera move.
-    pub fn read_accum(&self) -> Result<Vec<[f32; 4]>> {
-        Ok(self.accum.read::<[f32; 4]>()?[..self.pixels()].to_vec())
-    }
-    /// The tonemapped accumulation as RGBA8 bytes.
-    pub fn read_ldr(&self) -> Result<Vec<u8>> {
-        let words = self.ldr.read::<u32>()?;
-        Ok(bytemuck::cast_slice(&words[..self.pixels()]).to_vec())
-    }
-    /// The G-buffer of the last frame, if the method uses one (edge-aware or reprojecting).
-    pub fn read_gbuffer(&self) -> Result<Option<Vec<blueshift_layout::motion::GBufferTexel>>> {
-        match &self.motion {
-            Some(m) => Ok(Some(m.current_gbuffer().read()?[..self.pixels()].to_vec())),
-            None => Ok(None),
-        }
-    }
-    /// The mean motion (pixels) the last reprojection measured; (0, 0) without one.
-    pub fn last_motion(&self) -> (i32, i32) {
-        self.motion.as_ref().map_or((0, 0), |m| m.last_motion)
-    }
-    /// The current (padded) seed buffer.
-    pub fn read_seeds(&self) -> Result<Vec<u32>> {
-        Ok(self.seeds[self.current].read::<u32>()?[..self.screen.seed_count()].to_vec())
-    }
-    /// Replaces the seed buffer (e.g. a precomputed seed map). Must be a permutation of
-    /// [`Self::initial_seeds`] for the permutation invariants to hold; only the length is checked.
-    pub fn write_seeds(&mut self, seeds: &[u32]) -> Result<()> {
-        if seeds.len() != self.screen.seed_count() {
-            return Err(RenderError::Invalid(format!(
-                "seed map has {} seeds, the padded screen needs {}",
-                seeds.len(),
-                self.screen.seed_count()
-            )));
-        }
-        self.seeds[self.current].write(0, seeds)?;
-        Ok(())
-    }
-    pub fn initial_seeds(&self) -> &[u32] {
-        &self.initial_seeds
-    }
-    pub fn screen(&self) -> Screen {
-        self.screen
-    }
-    fn pixels(&self) -> usize {
-        self.cfg.width as usize * self.cfg.height as usize
     }
 }
 
