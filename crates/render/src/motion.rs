@@ -108,7 +108,7 @@ impl Renderer {
         let reproject = st.prev.is_some();
         if let Some(prev) = &st.prev {
             let mp = motion_params(prev, tp, &self.screen);
-            self.rec.begin_pass("reproject")?;
+            self.rec.begin_pass("reproject_motion")?;
             let r = &st.reprojection;
             r.reproject_motion(
                 &mut self.rec,
@@ -117,6 +117,7 @@ impl Renderer {
                 &st.gbuffers[g_cur],
             )?;
             let (cur, next) = (self.current, 1 - self.current);
+            self.rec.begin_pass("reproject_seeds")?;
             r.reproject_seeds(&mut self.rec, &mp, &self.seeds[cur], &self.seeds[next])?;
         }
         let times = self.rec.submit_and_wait()?;
