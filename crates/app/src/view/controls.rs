@@ -133,7 +133,11 @@ impl Settings {
 pub fn pass_times(stats: &[FrameStats], present_ms: f64) -> String {
     let mut parts = Vec::new();
     for (name, label) in [
+        ("gbuffer", "gbuffer"),
+        ("reproject_motion", "motion"),
+        ("reproject_seeds", "reproject"),
         ("trace", "trace"),
+        ("classify", "classify"),
         ("sort", "sort"),
         ("retarget", "retarget"),
         ("accumulate", "accum"),
