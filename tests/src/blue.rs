@@ -63,18 +63,7 @@ fn sort_retarget_error_is_bluer_than_white_with_the_same_rmse() {
     let scene = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let assets = MethodAssets::load(&default_assets_dir()).unwrap();
     // Reference: Owen-Sobol, 512 spp (its own error is ~1/22 of the 1-spp error: negligible).
-    let cfg = RenderConfig {
-        spp: 128,
-        bounces: 1,
-        method: Method::Sobol,
-        no_jitter: true,
-        ..RenderConfig::new(W, W)
-    };
-    let mut r = Renderer::new(gpu.dev(), &scene, &assets, cfg).unwrap();
-    for _ in 0..4 {
-        r.render_frame().unwrap();
-    }
-    let reference: Vec<f32> = r.read_accum().unwrap().iter().map(|p| p[3]).collect();
+    let reference = crate::cornell_reference(&gpu, &scene, &assets, W);
     let white = run(&gpu, &scene, &assets, Method::White, &reference);
     let blue = run(&gpu, &scene, &assets, Method::SortRetarget, &reference);
     eprintln!(

@@ -38,18 +38,7 @@ fn hbo19_frame0_error_is_bluer_than_white() {
     let scene = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let assets = MethodAssets::load(&default_assets_dir()).unwrap();
     assert!(!assets.keys.is_empty(), "no key tables under assets/keys");
-    let cfg = RenderConfig {
-        spp: 128,
-        bounces: 1,
-        method: Method::Sobol,
-        no_jitter: true,
-        ..RenderConfig::new(W, W)
-    };
-    let mut r = Renderer::new(gpu.dev(), &scene, &assets, cfg).unwrap();
-    for _ in 0..4 {
-        r.render_frame().unwrap();
-    }
-    let reference: Vec<f32> = r.read_accum().unwrap().iter().map(|p| p[3]).collect();
+    let reference = crate::cornell_reference(&gpu, &scene, &assets, W);
     let white = frame0(&gpu, &scene, &assets, Method::White, &reference);
     let hbo = frame0(&gpu, &scene, &assets, Method::Hbo19, &reference);
     eprintln!("frame 0 LF / RMSE: white {white:?}, hbo19 {hbo:?}");

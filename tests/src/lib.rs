@@ -109,6 +109,54 @@ impl Drop for Gpu {
     }
 }
 
+/// A small deterministic generator for test inputs (64-bit LCG, high bits out).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    pub fn next_u32(&mut self) -> u32 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 33) as u32
+    }
+    /// Uniform in [0, 1) with 24 bits.
+    pub fn unit(&mut self) -> f32 {
+        (self.next_u32() >> 8) as f32 / (1u32 << 24) as f32
+    }
+    /// A random permutation of 0..n.
+    pub fn perm(&mut self, n: u32) -> Vec<u32> {
+        let mut m: Vec<u32> = (0..n).collect();
+        for i in (1..m.len()).rev() {
+            m.swap(i, self.next_u32() as usize % (i + 1));
+        }
+        m
+    }
+}
+
+/// Luminance of a converged Cornell-box image at `w x w` (Owen-Sobol, 512 spp, direct light,
+/// pixel-centre rays): the reference the end-to-end error tests measure against.
+pub fn cornell_reference(
+    gpu: &Gpu,
+    scene: &blueshift_scene::Scene,
+    assets: &blueshift_render::MethodAssets,
+    w: u32,
+) -> Vec<f32> {
+    use blueshift_render::{Method, RenderConfig, Renderer};
+    let cfg = RenderConfig {
+        spp: 128,
+        bounces: 1,
+        method: Method::Sobol,
+        no_jitter: true,
+        ..RenderConfig::new(w, w)
+    };
+    let mut r = Renderer::new(gpu.dev(), scene, assets, cfg).unwrap();
+    for _ in 0..4 {
+        r.render_frame().unwrap();
+    }
+    r.read_accum().unwrap().iter().map(|p| p[3]).collect()
+}
+
 /// Workgroup count covering `n` invocations at `local` per group.
 pub fn groups_for(n: u32, local: u32) -> u32 {
     n.div_ceil(local)

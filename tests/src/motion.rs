@@ -1,7 +1,7 @@
 //! Our extensions' passes (edge-aware grouping, seed reprojection, G-buffer): GPU == CPU twin
 //! exactly, the seed buffer stays a permutation under random motion fields, and a still
 //! camera makes reprojection the identity.
-use crate::Gpu;
+use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 use blueshift_permute::{
@@ -14,20 +14,6 @@ use blueshift_render::{
 use blueshift_scene::{Scene, SceneGpu};
 use glam::{Vec2, Vec3};
 
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> u32 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 33) as u32
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next() >> 8) as f32 / (1u32 << 24) as f32
-    }
-}
-
 /// A G-buffer of a few planar regions cut by random lines: per region a material, a normal and
 /// a plane, some sky pixels; positions on the region's plane. Exercises every branch of
 /// `similar` (same/different material, normal, plane, sky).
@@ -38,7 +24,7 @@ fn random_gbuffer(w: u32, h: u32, rng: &mut Lcg) -> Vec<GBufferTexel> {
     let regions: Vec<(u32, Vec3, f32)> = (0..8)
         .map(|_| {
             let n = Vec3::new(rng.unit() - 0.5, rng.unit() - 0.5, 1.0).normalize();
-            (rng.next() % 3, n, rng.unit() * 0.3)
+            (rng.next_u32() % 3, n, rng.unit() * 0.3)
         })
         .collect();
     (0..w * h)
@@ -48,7 +34,7 @@ fn random_gbuffer(w: u32, h: u32, rng: &mut Lcg) -> Vec<GBufferTexel> {
                 r | (usize::from(l.0 * x + l.1 * y > l.2 * 0.3) << k)
             });
             let (m, n, d) = regions[r];
-            if rng.next() % 17 == 0 {
+            if rng.next_u32() % 17 == 0 {
                 return GBufferTexel {
                     position: Vec3::ZERO,
                     material: 0,
@@ -79,11 +65,13 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
         let mask: Vec<u32> = {
             let mut m: Vec<u32> = (0..256).collect();
             for i in (1..256).rev() {
-                m.swap(i, rng.next() as usize % (i + 1));
+                m.swap(i, rng.next_u32() as usize % (i + 1));
             }
             m
         };
-        let lum: Vec<f32> = (0..w * h).map(|_| (rng.next() % 40) as f32 * 0.5).collect();
+        let lum: Vec<f32> = (0..w * h)
+            .map(|_| (rng.next_u32() % 40) as f32 * 0.5)
+            .collect();
         let est: Vec<[f32; 4]> = lum.iter().map(|&l| [l, l, l, l]).collect();
         let init: Vec<u32> = (0..sc.seed_count() as u32)
             .map(|i| i.wrapping_mul(2654435761))
@@ -169,8 +157,8 @@ fn reprojection_matches_cpu_and_is_a_bijection_under_random_motion() {
             .map(|q| {
                 let (x, y) = (q % pw, q / pw);
                 let (sx, sy) = (
-                    x + (rng.next() % (2 * spread + 1)) as i32 - spread as i32,
-                    y + (rng.next() % 3) as i32 - 1,
+                    x + (rng.next_u32() % (2 * spread + 1)) as i32 - spread as i32,
+                    y + (rng.next_u32() % 3) as i32 - 1,
                 );
                 let ok = x < w as i32
                     && y < h as i32
@@ -178,7 +166,7 @@ fn reprojection_matches_cpu_and_is_a_bijection_under_random_motion() {
                     && sy >= 0
                     && sx < w as i32
                     && sy < h as i32
-                    && rng.next() % 5 != 0;
+                    && rng.next_u32() % 5 != 0;
                 if ok {
                     (sy * pw + sx) as u32
                 } else {
@@ -272,16 +260,7 @@ fn gbuffer_and_motion_match_cpu() {
     // The motion pass on exactly these G-buffers (uploaded), GPU vs CPU.
     let sc = Screen::new(w, h, assets.n).unwrap();
     let rp = Reprojection::new(gpu.dev(), &sc).unwrap();
-    let prev = &params[0];
-    let p = MotionParams {
-        cam_origin: prev.cam_origin,
-        cam_forward: prev.cam_forward,
-        cam_right: prev.cam_right,
-        cam_up: prev.cam_up,
-        view_offset: prev.view_offset,
-        view_size: prev.view_size,
-        ..motion_params(w, h, &sc)
-    };
+    let p = blueshift_render::motion_params(&params[0], &sc);
     let g0 = Buffer::from_slice(gpu.dev(), "motion.prev", &bufs[0]).unwrap();
     let g1 = Buffer::from_slice(gpu.dev(), "motion.cur", &bufs[1]).unwrap();
     let rec = gpu.rec.as_mut().unwrap();

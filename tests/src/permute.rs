@@ -1,28 +1,10 @@
 //! Sorting and retargeting passes: GPU == CPU twin exactly, and the seed buffer stays a
 //! permutation of the initial seeds after every pass.
-use crate::Gpu;
+use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_permute::{
     PermutePasses, Screen, is_permutation_of, mask_offset, retarget_seeds_cpu, sort_seeds_cpu,
 };
-
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> u32 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 33) as u32
-    }
-    fn perm(&mut self, n: u32) -> Vec<u32> {
-        let mut m: Vec<u32> = (0..n).collect();
-        for i in (1..m.len()).rev() {
-            m.swap(i, self.next() as usize % (i + 1));
-        }
-        m
-    }
-}
 
 /// A random tile permutation with displacements <= r: disjoint random swaps within radius.
 fn random_table(n: u32, r: i32, rng: &mut Lcg) -> Vec<[i32; 2]> {
@@ -30,8 +12,8 @@ fn random_table(n: u32, r: i32, rng: &mut Lcg) -> Vec<[i32; 2]> {
     let mut moved = vec![false; (n * n) as usize];
     for u in rng.perm(n * n) {
         let (dx, dy) = (
-            (rng.next() % (2 * r as u32 + 1)) as i32 - r,
-            (rng.next() % (2 * r as u32 + 1)) as i32 - r,
+            (rng.next_u32() % (2 * r as u32 + 1)) as i32 - r,
+            (rng.next_u32() % (2 * r as u32 + 1)) as i32 - r,
         );
         if dx * dx + dy * dy > r * r {
             continue;
@@ -123,7 +105,7 @@ fn sort_and_retarget_match_cpu_and_stay_permutations() {
         let mut cpu = init.clone();
         for f in 0..frames {
             let lum: Vec<f32> = (0..w * h)
-                .map(|_| (rng.next() % 50) as f32 * 0.25)
+                .map(|_| (rng.next_u32() % 50) as f32 * 0.25)
                 .collect();
             gpu_frame(
                 &mut gpu,
@@ -246,7 +228,7 @@ fn thousand_frames_stay_a_permutation() {
         Buffer::from_slice(gpu.dev(), "permute.seeds_b", &init).unwrap(),
     ];
     for f in 0..1000u64 {
-        let lum: Vec<f32> = (0..w * h).map(|_| rng.next() as f32).collect();
+        let lum: Vec<f32> = (0..w * h).map(|_| rng.next_u32() as f32).collect();
         let (src, dst) = (&bufs[(f % 2) as usize], &bufs[1 - (f % 2) as usize]);
         gpu_frame(
             &mut gpu,

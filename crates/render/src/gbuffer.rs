@@ -2,6 +2,7 @@
 //! every pixel centre, which edge-aware grouping and seed reprojection compare between pixels
 //! and frames.
 use crate::images::SceneImages;
+use crate::passes::scene_resources;
 use crate::upload::SceneBuffers;
 use crate::{Result, TRACE_BINDINGS};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder};
@@ -43,17 +44,7 @@ impl GBufferPass {
     ) -> Result<()> {
         rec.dispatch(
             &self.pipeline,
-            &[
-                (&i.nodes).into(),
-                (&i.triangles).into(),
-                (&i.shading).into(),
-                (&i.materials).into(),
-                (&i.textures).into(),
-                (&i.texels).into(),
-                (&i.lights).into(),
-                (&s.info).into(),
-                out.into(),
-            ],
+            &[&scene_resources(s, i)[..], &[out.into()]].concat(),
             bytemuck::bytes_of(p),
             [p.width.div_ceil(8), p.height.div_ceil(8), 1],
         )?;

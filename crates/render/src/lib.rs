@@ -32,6 +32,7 @@ pub use config::RenderConfig;
 pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
 pub use method::Method;
+pub use motion::motion_params;
 pub use passes::{LLVMPIPE_LOOP_LIMIT, TRACE_BINDINGS, TRACE_LOOP_GUARD, TraceVariant};
 pub use seeds::{SeedMap, initial_seeds, tile_seeds};
 pub use upload::SceneBuffers;

@@ -2,8 +2,8 @@
 //! G-buffer, edge-aware grouping (classes for the sorting pass) and bijective seed
 //! reprojection, with the mask offset following the image's mean motion.
 use crate::gbuffer::GBufferPass;
-use crate::{Renderer, Result};
-use blueshift_device::{Buffer, Device, MemoryLocation, PassTime};
+use crate::{RenderError, Renderer, Result, SceneBuffers, SceneImages};
+use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::motion::{GBufferTexel, MotionParams};
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::{Reprojection, Screen, follow_offset, mask_offset, mean_motion};
@@ -57,10 +57,45 @@ impl MotionState {
     pub fn current_gbuffer(&self) -> &Buffer {
         &self.gbuffers[1 - self.next_g]
     }
+
+    /// The G-buffer of the frame before (the reprojection source).
+    fn previous_gbuffer(&self) -> &Buffer {
+        &self.gbuffers[self.next_g]
+    }
+
+    /// Records the `gbuffer` pass for camera `tp` into the next G-buffer, which becomes the
+    /// current one.
+    fn record_gbuffer(
+        &mut self,
+        rec: &mut Recorder,
+        tp: &TraceParams,
+        scene: &SceneBuffers,
+        images: &SceneImages,
+    ) -> Result<()> {
+        rec.begin_pass("gbuffer")?;
+        self.pass
+            .gbuffer(rec, tp, scene, images, &self.gbuffers[self.next_g])?;
+        self.next_g = 1 - self.next_g;
+        Ok(())
+    }
 }
 
-/// Motion parameters: the previous camera `prev`, the screen of `cur`.
-fn motion_params(prev: &TraceParams, cur: &TraceParams, screen: &Screen) -> MotionParams {
+/// The renderer's motion state, created when a method first needs it.
+fn state<'a>(
+    slot: &'a mut Option<MotionState>,
+    dev: &Device,
+    screen: &Screen,
+) -> Result<&'a mut MotionState> {
+    if slot.is_none() {
+        *slot = Some(MotionState::new(dev, screen)?);
+    }
+    slot.as_mut()
+        .ok_or_else(|| RenderError::Invalid("motion state missing".into()))
+}
+
+/// Parameters of the reprojection passes: the camera of the previous frame (`prev`, the
+/// push constants it was traced with) and the screen.
+pub fn motion_params(prev: &TraceParams, screen: &Screen) -> MotionParams {
     MotionParams {
         cam_origin: prev.cam_origin,
         cam_forward: prev.cam_forward,
@@ -68,8 +103,8 @@ fn motion_params(prev: &TraceParams, cur: &TraceParams, screen: &Screen) -> Moti
         cam_up: prev.cam_up,
         view_offset: prev.view_offset,
         view_size: prev.view_size,
-        width: cur.width,
-        height: cur.height,
+        width: screen.width,
+        height: screen.height,
         padded_width: screen.stride(),
         padded_height: screen.padded_height(),
     }
@@ -89,39 +124,25 @@ impl Renderer {
         if !m.reprojects() {
             return Ok((mask_offset(self.frame, shift, n), Vec::new()));
         }
-        if self.motion.is_none() {
-            self.motion = Some(MotionState::new(&self.dev, &self.screen)?);
-        }
-        let Some(st) = self.motion.as_mut() else {
-            unreachable!("created above")
-        };
-        let (g_cur, g_prev) = (st.next_g, 1 - st.next_g);
+        let st = state(&mut self.motion, &self.dev, &self.screen)?;
         self.rec.begin()?;
-        self.rec.begin_pass("gbuffer")?;
-        st.pass.gbuffer(
-            &mut self.rec,
-            tp,
-            &self.scene,
-            &self.images,
-            &st.gbuffers[g_cur],
-        )?;
+        st.record_gbuffer(&mut self.rec, tp, &self.scene, &self.images)?;
         let reproject = st.prev.is_some();
         if let Some(prev) = &st.prev {
-            let mp = motion_params(prev, tp, &self.screen);
+            let mp = motion_params(prev, &self.screen);
             self.rec.begin_pass("reproject_motion")?;
             let r = &st.reprojection;
             r.reproject_motion(
                 &mut self.rec,
                 &mp,
-                &st.gbuffers[g_prev],
-                &st.gbuffers[g_cur],
+                st.previous_gbuffer(),
+                st.current_gbuffer(),
             )?;
             let (cur, next) = (self.current, 1 - self.current);
             self.rec.begin_pass("reproject_seeds")?;
             r.reproject_seeds(&mut self.rec, &mp, &self.seeds[cur], &self.seeds[next])?;
         }
         let times = self.rec.submit_and_wait()?;
-        st.next_g = g_prev;
         st.prev = Some(*tp);
         let offset = match st.prev_offset {
             None => (0, 0),
@@ -153,22 +174,9 @@ impl Renderer {
         if !m.edge_aware() {
             return Ok(());
         }
-        if self.motion.is_none() {
-            self.motion = Some(MotionState::new(&self.dev, &self.screen)?);
-        }
-        let Some(st) = self.motion.as_mut() else {
-            unreachable!("created above")
-        };
+        let st = state(&mut self.motion, &self.dev, &self.screen)?;
         if !m.reprojects() {
-            self.rec.begin_pass("gbuffer")?;
-            st.pass.gbuffer(
-                &mut self.rec,
-                tp,
-                &self.scene,
-                &self.images,
-                &st.gbuffers[st.next_g],
-            )?;
-            st.next_g = 1 - st.next_g;
+            st.record_gbuffer(&mut self.rec, tp, &self.scene, &self.images)?;
         }
         self.rec.begin_pass("classify")?;
         self.permute

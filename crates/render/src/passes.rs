@@ -3,7 +3,7 @@
 use crate::images::SceneImages;
 use crate::upload::SceneBuffers;
 use crate::{RenderError, Result};
-use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Image, Recorder};
+use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Image, Recorder, Res};
 use blueshift_layout::params::{
     ImageParams, MASK_MODE_NONE, TRACE_GROUP_X, TRACE_GROUP_Y, TraceParams,
 };
@@ -131,6 +131,20 @@ fn pipeline(
     Ok(blueshift_shaders::pipeline(dev, name, bindings, push)?)
 }
 
+/// The scene's resources in binding order 0-7 (shared by the path tracer and `gbuffer`).
+pub(crate) fn scene_resources<'a>(s: &'a SceneBuffers, i: &'a SceneImages) -> [Res<'a>; 8] {
+    [
+        (&i.nodes).into(),
+        (&i.triangles).into(),
+        (&i.shading).into(),
+        (&i.materials).into(),
+        (&i.textures).into(),
+        (&i.texels).into(),
+        (&i.lights).into(),
+        (&s.info).into(),
+    ]
+}
+
 /// Bindings of every path-tracer variant (and of the all-runtime `trace/trace`).
 pub const TRACE_BINDINGS: [Binding; 13] = [
     Binding::image(0, "scene_nodes"),
@@ -236,20 +250,16 @@ impl ImagePasses {
         rec.dispatch(
             pipeline,
             &[
-                (&i.nodes).into(),
-                (&i.triangles).into(),
-                (&i.shading).into(),
-                (&i.materials).into(),
-                (&i.textures).into(),
-                (&i.texels).into(),
-                (&i.lights).into(),
-                (&s.info).into(),
-                seeds.into(),
-                mask.into(),
-                estimate.into(),
-                status.into(),
-                keys.into(),
-            ],
+                &scene_resources(s, i)[..],
+                &[
+                    seeds.into(),
+                    mask.into(),
+                    estimate.into(),
+                    status.into(),
+                    keys.into(),
+                ],
+            ]
+            .concat(),
             bytemuck::bytes_of(p),
             [
                 p.width.div_ceil(TRACE_GROUP_X),
