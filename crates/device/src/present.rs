@@ -83,18 +83,7 @@ impl Recorder {
                 src.name, src.size
             )));
         }
-        let region = vk::BufferImageCopy::default()
-            .image_subresource(vk::ImageSubresourceLayers {
-                aspect_mask: vk::ImageAspectFlags::COLOR,
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: 1,
-            })
-            .image_extent(vk::Extent3D {
-                width,
-                height,
-                depth: 1,
-            });
+        let region = crate::transfer::whole_image_copy(width, height);
         // SAFETY: recording; the buffer is TRANSFER_SRC, the image in TRANSFER_DST_OPTIMAL.
         unsafe {
             self.dev.raw().cmd_copy_buffer_to_image(

@@ -66,18 +66,7 @@ impl Recorder {
     /// Copies an image (in GENERAL layout) into a buffer, tightly packed.
     pub fn copy_image_to_buffer(&mut self, img: &Image, dst: &Buffer) -> Result<()> {
         self.check_recording()?;
-        let region = vk::BufferImageCopy::default()
-            .image_subresource(vk::ImageSubresourceLayers {
-                aspect_mask: vk::ImageAspectFlags::COLOR,
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: 1,
-            })
-            .image_extent(vk::Extent3D {
-                width: img.width,
-                height: img.height,
-                depth: 1,
-            });
+        let region = whole_image_copy(img.width, img.height);
         // SAFETY: recording; image is in GENERAL.
         unsafe {
             self.dev.raw().cmd_copy_image_to_buffer(
@@ -91,4 +80,20 @@ impl Recorder {
         self.barrier();
         Ok(())
     }
+}
+
+/// A tightly packed buffer <-> colour image copy of the whole `width x height` mip 0.
+pub(crate) fn whole_image_copy(width: u32, height: u32) -> vk::BufferImageCopy {
+    vk::BufferImageCopy::default()
+        .image_subresource(vk::ImageSubresourceLayers {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: 1,
+        })
+        .image_extent(vk::Extent3D {
+            width,
+            height,
+            depth: 1,
+        })
 }
