@@ -16,6 +16,9 @@ const float GOLDEN = 0.61803398875;
 TraceParams P;
 uint g_light_count;
 vec3 g_environment;
+// Base colour at the latest primary hit (main sets 1, which a pixel whose rays miss keeps):
+// the divisor of the demodulated sorting key (TRACE_FLAG_DEMODULATE).
+vec3 g_albedo0;
 
 // Sample dimension `dim` of sample `index` for this pixel: from the mask in the mask modes
 // (first MASK_DIMS dimensions, each read at its own fixed offset so dimensions decorrelate,
@@ -203,9 +206,10 @@ bool path_step(uvec2 px, uint seed, uint index, uint s, inout PathState st) {
         }
         st.l += st.throughput * le * w;
     }
+    BrdfInput m = material_at(mat, srf.uv);
+    if (st.b == 0u) g_albedo0 = m.base;
     if (st.b == P.max_bounces) return true;
     uint d = 2u + st.b * DIMS_PER_BOUNCE;
-    BrdfInput m = material_at(mat, srf.uv);
     vec3 wo = -st.ray.dir;
     vec3 ul = vec3(sample_dim(px, seed, index, s, d), sample_dim(px, seed, index, s, d + 1u),
                    sample_dim(px, seed, index, s, d + 2u));

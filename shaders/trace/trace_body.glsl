@@ -81,6 +81,7 @@ void main() {
     g_loop_ticks = 0u;
     g_light_count = scene.light_count;
     g_environment = scene.environment;
+    g_albedo0 = vec3(1.0);
     // Keeps every binding in every variant, so all variants share one binding table.
     int keep = imageSize(scene_textures).x + imageSize(scene_texels).x + mask.length() +
                hbo19_keys.length();
@@ -95,7 +96,11 @@ void main() {
     uint o = px.y * P.width + px.x;
     vec3 prev = estimate[o].rgb;
     l = s0 > 0u ? prev + (l - prev) * (float(count) / float(s0 + count)) : l;
-    if (inside && keep != -1) estimate[o] = vec4(l, luminance(l));
+    // The sorting key: luminance, or with TRACE_FLAG_DEMODULATE the luminance of the lighting
+    // (estimate over the primary hit's base colour; a heuristic that only steers the sort).
+    vec3 albedo = (P.flags & TRACE_FLAG_DEMODULATE) != 0u
+        ? max(g_albedo0, vec3(DEMODULATE_MIN_ALBEDO)) : vec3(1.0);
+    if (inside && keep != -1) estimate[o] = vec4(l, luminance(l / albedo));
     uint ticks = subgroupMax(g_loop_ticks);
     if (subgroupElect()) atomicMax(trace_status[0], ticks);
 }

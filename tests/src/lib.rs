@@ -15,6 +15,8 @@ mod blue;
 #[cfg(test)]
 mod bvh;
 #[cfg(test)]
+mod demod;
+#[cfg(test)]
 mod hbo19;
 #[cfg(test)]
 mod headers;

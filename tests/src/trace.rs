@@ -206,6 +206,7 @@ fn renderer_seeds_stay_a_permutation() {
         Method::SortRetargetReproject,
         Method::SortRetargetEdges,
         Method::SortRetargetPlus,
+        Method::SortRetargetDemod,
     ] {
         let cfg = RenderConfig {
             bounces: 1,

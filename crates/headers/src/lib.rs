@@ -19,6 +19,8 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("TRACE_FLAG_SALT_FRAME", params::TRACE_FLAG_SALT_FRAME)
                 .constant("TRACE_FLAG_ADVANCE_INDEX", params::TRACE_FLAG_ADVANCE_INDEX)
                 .constant("TRACE_FLAG_NO_JITTER", params::TRACE_FLAG_NO_JITTER)
+                .constant("TRACE_FLAG_DEMODULATE", params::TRACE_FLAG_DEMODULATE)
+                .constant_f32("DEMODULATE_MIN_ALBEDO", params::DEMODULATE_MIN_ALBEDO)
                 .constant("MASK_MODE_NONE", params::MASK_MODE_NONE)
                 .constant("MASK_MODE_2D", params::MASK_MODE_2D)
                 .constant("MASK_MODE_SPATIOTEMPORAL", params::MASK_MODE_SPATIOTEMPORAL)

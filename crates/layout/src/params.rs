@@ -85,6 +85,13 @@ pub const TRACE_FLAG_ADVANCE_INDEX: u32 = 2;
 /// error is the light-transport integrand's alone; edges of visible emitters otherwise
 /// dominate every error metric.
 pub const TRACE_FLAG_NO_JITTER: u32 = 4;
+/// `TraceParams::flags`: the sorting key (`estimate.w`) is the luminance of the estimate
+/// divided by the base colour at the primary hit (floored at `DEMODULATE_MIN_ALBEDO`): the
+/// lighting a seed produced rather than its product with the texture, so a seed's rank carries
+/// over across albedo edges. The image (`estimate.rgb`) is unchanged.
+pub const TRACE_FLAG_DEMODULATE: u32 = 8;
+/// Smallest albedo per channel the demodulated key divides by.
+pub const DEMODULATE_MIN_ALBEDO: f32 = 0.02;
 /// Workgroup size of the trace pass (invocations = pixels; llvmpipe runs them in SIMD batches
 /// of 8 consecutive invocations, x fastest).
 pub const TRACE_GROUP_X: u32 = 8;

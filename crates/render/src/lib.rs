@@ -40,7 +40,7 @@ pub use upload::SceneBuffers;
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
-    TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
+    TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
 use blueshift_permute::{PermutePasses, Screen};
 use blueshift_scene::{Camera, Scene, SceneGpu};
@@ -286,6 +286,9 @@ impl Renderer {
         }
         if c.no_jitter {
             flags |= TRACE_FLAG_NO_JITTER;
+        }
+        if m.demodulates() {
+            flags |= TRACE_FLAG_DEMODULATE;
         }
         let (mask_mode, mask_size, mask_frames, off) = match m {
             Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),

@@ -26,12 +26,15 @@ pub enum Method {
     SortRetargetReproject,
     /// Ours: sorting ranks only pixels of one surface (G-buffer classes) within a block.
     SortRetargetEdges,
-    /// Ours: reprojection and edge-aware grouping together.
+    /// Ours: reprojection, edge-aware grouping and the demodulated key together.
     SortRetargetPlus,
+    /// Ours: sorting + retargeting on a demodulated key (the estimate over the primary hit's
+    /// base colour), so textures do not scramble the ranks.
+    SortRetargetDemod,
 }
 
 impl Method {
-    pub const ALL: [Method; 11] = [
+    pub const ALL: [Method; 12] = [
         Method::White,
         Method::WhiteFixed,
         Method::Sobol,
@@ -43,6 +46,7 @@ impl Method {
         Method::SortRetargetReproject,
         Method::SortRetargetEdges,
         Method::SortRetargetPlus,
+        Method::SortRetargetDemod,
     ];
 
     pub fn name(self) -> &'static str {
@@ -58,6 +62,7 @@ impl Method {
             Method::SortRetargetReproject => "sort-retarget-reproject",
             Method::SortRetargetEdges => "sort-retarget-edges",
             Method::SortRetargetPlus => "sort-retarget-plus",
+            Method::SortRetargetDemod => "sort-retarget-demod",
         }
     }
 
@@ -97,6 +102,7 @@ impl Method {
                 | Method::SortRetargetReproject
                 | Method::SortRetargetEdges
                 | Method::SortRetargetPlus
+                | Method::SortRetargetDemod
         )
     }
 
@@ -106,6 +112,11 @@ impl Method {
             self,
             Method::SortRetargetReproject | Method::SortRetargetPlus
         )
+    }
+
+    /// Whether the sorting key is demodulated by the primary hit's base colour.
+    pub fn demodulates(self) -> bool {
+        matches!(self, Method::SortRetargetDemod | Method::SortRetargetPlus)
     }
 
     /// Whether sorting ranks within G-buffer surface classes.

@@ -9,7 +9,7 @@ use crate::GpuOpts;
 use crate::output::prepare_dir;
 use crate::render::{load_assets, scene_path};
 use anyhow::{Context, Result, bail};
-use blueshift_analysis::Gray;
+use blueshift_analysis::{Gray, luminance};
 use blueshift_render::{CameraPath, Method, RenderConfig, Renderer, SeedMap};
 use indicatif::{ProgressBar, ProgressStyle};
 use metrics::{Masks, RunAccumulator, RunMetrics};
@@ -281,8 +281,15 @@ fn run_method(
             if args.save_frames && seq == 0 {
                 save_frame(args, config, method, t, &est, &rf.px)?;
             }
-            let e: Vec<f32> = est.iter().zip(&rf.px).map(|(a, b)| a[3] - b[3]).collect();
-            let reference_y = Gray::new(w as usize, h as usize, rf.luminance())?;
+            // Luminance from rgb: the estimate's fourth channel is the sorting key, which
+            // demodulating methods change.
+            let reference_y = rf.luminance();
+            let e: Vec<f32> = est
+                .iter()
+                .zip(&reference_y)
+                .map(|(a, b)| luminance([a[0], a[1], a[2]]) - b)
+                .collect();
+            let reference_y = Gray::new(w as usize, h as usize, reference_y)?;
             let masks = Masks::from_reference(&reference_y);
             acc.add_frame(t as usize, Gray::new(w as usize, h as usize, e)?, &masks)?;
             if t + 1 == args.frames {

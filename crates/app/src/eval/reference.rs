@@ -2,6 +2,7 @@
 //! camera path, resolution, bounces, spp and the path tracer's SPIR-V (the renderer version).
 use crate::output::write_atomic;
 use anyhow::{Context, Result, bail};
+use blueshift_analysis::luminance;
 use blueshift_device::Device;
 use blueshift_render::{CameraPath, Method, MethodAssets, RenderConfig, Renderer};
 use blueshift_sampling::Sampler;
@@ -31,8 +32,12 @@ impl Image {
             .collect();
         Image { w, h, px }
     }
+    /// Rec.709 luminance of the rgb channels (not the fourth channel, which is the sorting key).
     pub fn luminance(&self) -> Vec<f32> {
-        self.px.iter().map(|p| p[3]).collect()
+        self.px
+            .iter()
+            .map(|p| luminance([p[0], p[1], p[2]]))
+            .collect()
     }
 }
 
