@@ -13,7 +13,7 @@
 
 layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { SortParams p; };
-layout(set = 0, binding = 0, scalar) readonly buffer Estimate { vec4 estimate[]; };  // rgb + luminance
+layout(set = 0, binding = 0, scalar) readonly buffer Estimate { vec4 estimate[]; };  // rgb + sort key
 layout(set = 0, binding = 1, scalar) readonly buffer Mask { uint mask[]; };          // N*N ranks
 layout(set = 0, binding = 2, scalar) buffer Seeds { uint seeds[]; };                 // padded
 layout(set = 0, binding = 3, scalar) readonly buffer Classes { uint classes[]; };     // W*H
