@@ -38,7 +38,9 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
             per_pass.entry(p.name).or_default().push(p.ms);
         }
     }
-    let cpu = process_cpu_seconds().zip(cpu0).map(|(t1, t0)| (t1 - t0) / f64::from(a.frames));
+    let cpu = process_cpu_seconds()
+        .zip(cpu0)
+        .map(|(t1, t0)| (t1 - t0) / f64::from(a.frames));
     ms.sort_by(f64::total_cmp);
     let median = ms[ms.len() / 2];
     let samples = cfg.width as f64 * cfg.height as f64 * cfg.spp as f64;
