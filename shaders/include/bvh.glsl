@@ -9,6 +9,9 @@
 // and the two fetch functions (where the data lives is the includer's choice):
 //   void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
 //                      out uint count);         // the fields of BvhNode `index`
+//   void bvh_load_children(uint first, out vec3 lmin, out vec3 lmax, out uint lfirst,
+//                          out uint lcount, out vec3 rmin, out vec3 rmax, out uint rfirst,
+//                          out uint rcount);  // nodes `first` and `first + 1`
 //   GpuTriangle bvh_load_triangle(uint index);  // triangle `index` of the BVH leaf order
 // scene_texels.glsl defines them over the scene images (the trace shader); defining
 // BVH_FROM_BUFFERS before the include defines them over
@@ -23,6 +26,9 @@
 // iteration of the traversal loop descends through interior nodes in an inner loop, tests
 // the leaf it reached right away, then pops. The nodes visited and triangles tested, and
 // their order, are exactly those of the Rust loop (one node per iteration there).
+// Inner loops are written bottom-tested (`if (c) do { .. } while (c)`): llvmpipe runs a loop
+// body once more after the last lane's last iteration when the test is at the top (the exit
+// check sees the mask only at the end of the body), which cost 16% of the pass here.
 //
 // API:
 //   bool bvh_closest_hit(Ray ray, out Hit hit)  closest t in [ray.tmin, ray.tmax]; on a miss
@@ -45,6 +51,13 @@ void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint le
     left_first = bvh_nodes[index].left_first;
     aabb_max = bvh_nodes[index].aabb_max;
     count = bvh_nodes[index].count;
+}
+
+void bvh_load_children(uint first, out vec3 lmin, out vec3 lmax, out uint lfirst,
+                       out uint lcount, out vec3 rmin, out vec3 rmax, out uint rfirst,
+                       out uint rcount) {
+    bvh_load_node(first, lmin, lmax, lfirst, lcount);
+    bvh_load_node(first + 1u, rmin, rmax, rfirst, rcount);
 }
 
 GpuTriangle bvh_load_triangle(uint index) { return bvh_triangles[index]; }
@@ -74,15 +87,23 @@ vec3 bvh_safe_inverse(vec3 d) {
     return inv;
 }
 
+// min / max without NaN handling (one instruction on x86; the slab test's values are never
+// NaN: inv is finite and nonzero, box corners are finite or the empty box's infinities).
+float bvh_fmin(float a, float b) { return a < b ? a : b; }
+float bvh_fmax(float a, float b) { return a > b ? a : b; }
+
 // Slab test: true if the box overlaps [tmin, tmax]; tnear = entry distance.
 bool bvh_box_entry(vec3 bmin, vec3 bmax, vec3 origin, vec3 inv, float tmin, float tmax,
                    out float tnear) {
     precise vec3 t0 = (bmin - origin) * inv;
     precise vec3 t1 = (bmax - origin) * inv;
-    vec3 lo = min(t0, t1);
-    vec3 hi = max(t0, t1);
-    tnear = max(max(max(lo.x, lo.y), lo.z), tmin);
-    precise float tfar = min(min(min(hi.x, hi.y), hi.z) * BVH_TFAR_SCALE, tmax * BVH_TFAR_SCALE);
+    bvec3 lt = lessThan(t0, t1);
+    vec3 lo = mix(t1, t0, lt);
+    vec3 hi = mix(t0, t1, lt);
+    tnear = bvh_fmax(bvh_fmax(bvh_fmax(lo.x, lo.y), lo.z), tmin);
+    precise float far = bvh_fmin(bvh_fmin(hi.x, hi.y), hi.z) * BVH_TFAR_SCALE;
+    precise float tmax_s = tmax * BVH_TFAR_SCALE;
+    float tfar = bvh_fmin(far, tmax_s);
     return tnear <= tfar;
 }
 
@@ -96,31 +117,21 @@ float bvh_dot(vec3 a, vec3 b) {
     return d;
 }
 
-// Möller–Trumbore; edges count as inside.
+// Möller–Trumbore; edges count as inside. Straight-line: a zero determinant makes u infinite
+// or NaN, which fails the u test like the early exit of the Rust twin (t, u, v are only
+// meaningful when this returns true).
 bool bvh_intersect_triangle(Ray ray, GpuTriangle tri, float tmax, out float t, out float u,
                             out float v) {
-    t = 0.0;
-    u = 0.0;
-    v = 0.0;
     vec3 pvec = bvh_cross(ray.dir, tri.e2);
     float det = bvh_dot(tri.e1, pvec);
-    if (det == 0.0) {
-        return false;
-    }
     precise float inv_det = 1.0 / det;
     precise vec3 tvec = ray.origin - tri.v0;
     u = bvh_dot(tvec, pvec) * inv_det;
-    if (!(u >= 0.0 && u <= 1.0)) {
-        return false;
-    }
     vec3 qvec = bvh_cross(tvec, tri.e1);
     v = bvh_dot(ray.dir, qvec) * inv_det;
     precise float uv_sum = u + v;
-    if (!(v >= 0.0 && uv_sum <= 1.0)) {
-        return false;
-    }
     t = bvh_dot(tri.e2, qvec) * inv_det;
-    return t >= ray.tmin && t <= tmax;
+    return u >= 0.0 && u <= 1.0 && v >= 0.0 && uv_sum <= 1.0 && t >= ray.tmin && t <= tmax;
 }
 
 bool bvh_closest_hit(Ray ray, out Hit hit) {
@@ -143,35 +154,34 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
         BVH_LOOP_TICK;
         // An interior node: step to the nearer child hit (pushing the farther one).
         bool pop = false;
-        while (count == 0u && !pop) {
-            BVH_LOOP_TICK;
-            vec3 lmin, lmax, rmin, rmax;
-            uint lfirst, lcount, rfirst, rcount;
-            bvh_load_node(first, lmin, lmax, lfirst, lcount);
-            bvh_load_node(first + 1u, rmin, rmax, rfirst, rcount);
-            float tl, tr;
-            bool hl = bvh_box_entry(lmin, lmax, ray.origin, inv, ray.tmin, hit.t, tl);
-            bool hr = bvh_box_entry(rmin, rmax, ray.origin, inv, ray.tmin, hit.t, tr);
-            if (hl && hr) {
-                bool left_near = tl <= tr;
-                if (sp < BVH_STACK_SIZE) {
-                    stack[sp] = left_near ? (rfirst << BVH_COUNT_BITS) | rcount
-                                          : (lfirst << BVH_COUNT_BITS) | lcount;
-                    stack_t[sp] = left_near ? tr : tl;
+        if (count == 0u) {
+            do {
+                BVH_LOOP_TICK;
+                vec3 lmin, lmax, rmin, rmax;
+                uint lfirst, lcount, rfirst, rcount;
+                bvh_load_children(first, lmin, lmax, lfirst, lcount, rmin, rmax, rfirst,
+                                  rcount);
+                float tl, tr;
+                bool hl = bvh_box_entry(lmin, lmax, ray.origin, inv, ray.tmin, hit.t, tl);
+                bool hr = bvh_box_entry(rmin, rmax, ray.origin, inv, ray.tmin, hit.t, tr);
+                // Branch-free selects (llvmpipe runs every branch anyway): go to the left
+                // child if it is hit and nearer than the right one or the only one hit.
+                bool go_left = hl && (!hr || tl <= tr);
+                if (hl && hr && sp < BVH_STACK_SIZE) {
+                    stack[sp] = go_left ? (rfirst << BVH_COUNT_BITS) | rcount
+                                        : (lfirst << BVH_COUNT_BITS) | lcount;
+                    stack_t[sp] = go_left ? tr : tl;
                     sp++;
                 }
-                first = left_near ? lfirst : rfirst;
-                count = left_near ? lcount : rcount;
-            } else if (hl || hr) {
-                first = hl ? lfirst : rfirst;
-                count = hl ? lcount : rcount;
-            } else {
-                pop = true;
-            }
+                pop = !hl && !hr;
+                first = pop ? first : go_left ? lfirst : rfirst;
+                count = pop ? count : go_left ? lcount : rcount;
+            } while (count == 0u && !pop);
         }
         // A leaf (possibly the child just reached, in the same iteration): its triangles.
         if (count > 0u && !pop) {
-            for (uint i = first; i < first + count; ++i) {
+            uint i = first, end = first + count;
+            do {
                 BVH_LOOP_TICK;
                 float t, u, v;
                 if (bvh_intersect_triangle(ray, bvh_load_triangle(i), hit.t, t, u, v) &&
@@ -181,21 +191,23 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
                     hit.u = u;
                     hit.v = v;
                 }
-            }
+                i++;
+            } while (i < end);
             pop = true;
         }
         if (pop) {
             // Pop the next far child that can still hold a closer hit.
             bool found = false;
-            while (sp > 0u) {
-                BVH_LOOP_TICK;
-                sp--;
-                if (stack_t[sp] <= hit.t * BVH_TFAR_SCALE) {
-                    first = stack[sp] >> BVH_COUNT_BITS;
-                    count = stack[sp] & ((1u << BVH_COUNT_BITS) - 1u);
-                    found = true;
-                    break;
-                }
+            if (sp > 0u) {
+                do {
+                    BVH_LOOP_TICK;
+                    sp--;
+                    if (stack_t[sp] <= hit.t * BVH_TFAR_SCALE) {
+                        first = stack[sp] >> BVH_COUNT_BITS;
+                        count = stack[sp] & ((1u << BVH_COUNT_BITS) - 1u);
+                        found = true;
+                    }
+                } while (!found && sp > 0u);
             }
             if (!found) {
                 break;
@@ -220,31 +232,35 @@ bool bvh_occluded(Ray ray) {
     while (true) {
         BVH_LOOP_TICK;
         bool pop = false;
-        while (count == 0u && !pop) {
-            BVH_LOOP_TICK;
-            vec3 lmin, lmax, rmin, rmax;
-            uint lfirst, lcount, rfirst, rcount;
-            bvh_load_node(first, lmin, lmax, lfirst, lcount);
-            bvh_load_node(first + 1u, rmin, rmax, rfirst, rcount);
-            float tl, tr;
-            bool hl = bvh_box_entry(lmin, lmax, ray.origin, inv, ray.tmin, ray.tmax, tl);
-            bool hr = bvh_box_entry(rmin, rmax, ray.origin, inv, ray.tmin, ray.tmax, tr);
-            if (hl && hr && sp < BVH_STACK_SIZE) {
-                stack[sp] = (rfirst << BVH_COUNT_BITS) | rcount;
-                sp++;
-            }
-            first = hl ? lfirst : rfirst;
-            count = hl ? lcount : rcount;
-            pop = !hl && !hr;
+        if (count == 0u) {
+            do {
+                BVH_LOOP_TICK;
+                vec3 lmin, lmax, rmin, rmax;
+                uint lfirst, lcount, rfirst, rcount;
+                bvh_load_children(first, lmin, lmax, lfirst, lcount, rmin, rmax, rfirst,
+                                  rcount);
+                float tl, tr;
+                bool hl = bvh_box_entry(lmin, lmax, ray.origin, inv, ray.tmin, ray.tmax, tl);
+                bool hr = bvh_box_entry(rmin, rmax, ray.origin, inv, ray.tmin, ray.tmax, tr);
+                if (hl && hr && sp < BVH_STACK_SIZE) {
+                    stack[sp] = (rfirst << BVH_COUNT_BITS) | rcount;
+                    sp++;
+                }
+                first = hl ? lfirst : rfirst;
+                count = hl ? lcount : rcount;
+                pop = !hl && !hr;
+            } while (count == 0u && !pop);
         }
         if (count > 0u && !pop) {
-            for (uint i = first; i < first + count; ++i) {
+            uint i = first, end = first + count;
+            do {
                 BVH_LOOP_TICK;
                 float t, u, v;
                 if (bvh_intersect_triangle(ray, bvh_load_triangle(i), ray.tmax, t, u, v)) {
                     occluded = true;
                 }
-            }
+                i++;
+            } while (i < end);
             pop = true;
         }
         if (occluded) {

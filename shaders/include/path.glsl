@@ -120,10 +120,12 @@ vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
     // so a pair-wise stratified or blue sampler (Sobol, hbo19 keys) stratifies it as a whole.
     // (u.z is left unused so the dimension layout stays the same.)
     uint lo = 0u, hi = g_light_count - 1u;
-    while (lo < hi) {  // first light with u.x < cdf
-        LOOP_TICK;
-        uint mid = (lo + hi) / 2u;
-        if (u.x < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
+    if (lo < hi) {
+        do {  // first light with u.x < cdf (bottom-tested: see trace_paths)
+            LOOP_TICK;
+            uint mid = (lo + hi) / 2u;
+            if (u.x < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
+        } while (lo < hi);
     }
     GpuLight l = scene_light(lo);
     float c0 = lo > 0u ? scene_light(max(lo, 1u) - 1u).cdf : 0.0;  // (both sides run)
@@ -238,14 +240,16 @@ uint sample_index_of(uint s) {
 
 // Sum of the estimates of samples s0 .. s0 + count. One loop over path vertices: a lane whose
 // path ends starts its next sample at once, so the 8 lanes of a SIMD batch stay busy (a loop
-// per path would run every lane as long as the longest of the 8 paths).
+// per path would run every lane as long as the longest of the 8 paths). Bottom-tested, like
+// the loops of bvh.glsl (a top-tested loop runs one extra, fully masked, path step);
+// TraceParams::sample_count is never 0.
 vec3 trace_paths(uvec2 px, uint seed, uint s0, uint count) {
     uint s = s0;
     PathState st = path_start(px, seed, sample_index_of(s), s);
     vec3 sum = vec3(0.0);
     // (Written without a `break` after the step: llvmpipe 22.3 computed wrong paths for the
     // form `if (path_step(..)) { ..; if (done) break; st = path_start(..); }`.)
-    while (s < s0 + count) {
+    do {
         LOOP_TICK;
         if (path_step(px, seed, sample_index_of(s), s, st)) {
             vec3 l = st.l;
@@ -254,7 +258,7 @@ vec3 trace_paths(uvec2 px, uint seed, uint s0, uint count) {
             st = path_start(px, seed, sample_index_of(s), s);
         }
         LOOP_SYNC;
-    }
+    } while (s < s0 + count);
     return sum;
 }
 

@@ -7,7 +7,8 @@
 //   layout(set = S, binding = ..., rgba32ui) readonly uniform uimage2D scene_nodes;
 //   ... and likewise scene_triangles, scene_shading, scene_materials, scene_lights,
 //   scene_textures, scene_texels.
-// Defines bvh_load_node / bvh_load_triangle for bvh.glsl, so include this first.
+// Defines bvh_load_node / bvh_load_children / bvh_load_triangle for bvh.glsl, so include this
+// first.
 #ifndef SCENE_TEXELS_GLSL
 #define SCENE_TEXELS_GLSL
 
@@ -17,14 +18,37 @@ ivec2 scene_texel_coord(uint k) {
 
 #define SCENE_TEXEL(image, k) imageLoad(image, scene_texel_coord(k))
 
+// Node `index` starts at texel NODE_TEXELS * (index + 1) (one node of padding first), so the
+// children of a node (an odd index and the next) are four texels of one row, like the four
+// texels of a triangle: one coordinate computation per pair or triangle (texels.rs).
 void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
                    out uint count) {
-    uvec4 a = SCENE_TEXEL(scene_nodes, NODE_TEXELS * index);
-    uvec4 b = SCENE_TEXEL(scene_nodes, NODE_TEXELS * index + 1u);
+    ivec2 c = scene_texel_coord(NODE_TEXELS * (index + 1u));
+    uvec4 a = imageLoad(scene_nodes, c);
+    uvec4 b = imageLoad(scene_nodes, c + ivec2(1, 0));
     aabb_min = uintBitsToFloat(a.xyz);
     left_first = a.w;
     aabb_max = uintBitsToFloat(b.xyz);
     count = b.w;
+}
+
+// Both children of an interior node: nodes `first` and `first + 1`.
+void bvh_load_children(uint first, out vec3 lmin, out vec3 lmax, out uint lfirst,
+                       out uint lcount, out vec3 rmin, out vec3 rmax, out uint rfirst,
+                       out uint rcount) {
+    ivec2 c = scene_texel_coord(NODE_TEXELS * (first + 1u));
+    uvec4 a = imageLoad(scene_nodes, c);
+    uvec4 b = imageLoad(scene_nodes, c + ivec2(1, 0));
+    uvec4 d = imageLoad(scene_nodes, c + ivec2(2, 0));
+    uvec4 e = imageLoad(scene_nodes, c + ivec2(3, 0));
+    lmin = uintBitsToFloat(a.xyz);
+    lfirst = a.w;
+    lmax = uintBitsToFloat(b.xyz);
+    lcount = b.w;
+    rmin = uintBitsToFloat(d.xyz);
+    rfirst = d.w;
+    rmax = uintBitsToFloat(e.xyz);
+    rcount = e.w;
 }
 
 // A triangle with the shading fields stored next to it.
@@ -35,10 +59,10 @@ struct SceneTriangle {
 };
 
 SceneTriangle scene_triangle(uint index) {
-    uint k = TRIANGLE_TEXELS * index;
-    uvec4 a = SCENE_TEXEL(scene_triangles, k);
-    uvec4 b = SCENE_TEXEL(scene_triangles, k + 1u);
-    uvec4 c = SCENE_TEXEL(scene_triangles, k + 2u);
+    ivec2 q = scene_texel_coord(TRIANGLE_TEXELS * index);  // (4 texels, one row)
+    uvec4 a = imageLoad(scene_triangles, q);
+    uvec4 b = imageLoad(scene_triangles, q + ivec2(1, 0));
+    uvec4 c = imageLoad(scene_triangles, q + ivec2(2, 0));
     SceneTriangle t;
     t.tri.v0 = uintBitsToFloat(a.xyz);
     t.tri.e1 = uintBitsToFloat(uvec3(a.w, b.xy));
@@ -57,11 +81,11 @@ struct SceneShading {
 };
 
 SceneShading scene_shading_at(uint index, bool with_uv) {
-    uint k = SHADING_TEXELS * index;
-    uvec4 a = SCENE_TEXEL(scene_shading, k);
-    uvec4 b = SCENE_TEXEL(scene_shading, k + 1u);
-    uvec4 c = SCENE_TEXEL(scene_shading, k + 2u);
-    uvec4 d = with_uv ? SCENE_TEXEL(scene_shading, k + 3u) : uvec4(0u);
+    ivec2 q = scene_texel_coord(SHADING_TEXELS * index);  // (4 texels, one row)
+    uvec4 a = imageLoad(scene_shading, q);
+    uvec4 b = imageLoad(scene_shading, q + ivec2(1, 0));
+    uvec4 c = imageLoad(scene_shading, q + ivec2(2, 0));
+    uvec4 d = with_uv ? imageLoad(scene_shading, q + ivec2(3, 0)) : uvec4(0u);
     SceneShading s;
     s.n0 = uintBitsToFloat(a.xyz);
     s.n1 = uintBitsToFloat(b.xyz);
@@ -84,11 +108,11 @@ struct SceneMaterial {
 };
 
 SceneMaterial scene_material(uint index) {
-    uint k = MATERIAL_TEXELS * index;
-    uvec4 a = SCENE_TEXEL(scene_materials, k);
-    uvec4 b = SCENE_TEXEL(scene_materials, k + 1u);
-    uvec4 c = SCENE_TEXEL(scene_materials, k + 2u);
-    uvec4 d = SCENE_TEXEL(scene_materials, k + 3u);
+    ivec2 q = scene_texel_coord(MATERIAL_TEXELS * index);  // (4 texels, one row)
+    uvec4 a = imageLoad(scene_materials, q);
+    uvec4 b = imageLoad(scene_materials, q + ivec2(1, 0));
+    uvec4 c = imageLoad(scene_materials, q + ivec2(2, 0));
+    uvec4 d = imageLoad(scene_materials, q + ivec2(3, 0));
     SceneMaterial m;
     m.base = uintBitsToFloat(a.xyz);
     m.metallic = uintBitsToFloat(a.w);

