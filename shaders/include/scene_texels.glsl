@@ -18,18 +18,23 @@ ivec2 scene_texel_coord(uint k) {
 
 #define SCENE_TEXEL(image, k) imageLoad(image, scene_texel_coord(k))
 
+// The fields of a BvhNode from its two texels.
+void node_fields(uvec4 a, uvec4 b, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
+                 out uint count) {
+    aabb_min = uintBitsToFloat(a.xyz);
+    left_first = a.w;
+    aabb_max = uintBitsToFloat(b.xyz);
+    count = b.w;
+}
+
 // Node `index` starts at texel NODE_TEXELS * (index + 1) (one node of padding first), so the
 // children of a node (an odd index and the next) are four texels of one row, like the four
 // texels of a triangle: one coordinate computation per pair or triangle (texels.rs).
 void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
                    out uint count) {
     ivec2 c = scene_texel_coord(NODE_TEXELS * (index + 1u));
-    uvec4 a = imageLoad(scene_nodes, c);
-    uvec4 b = imageLoad(scene_nodes, c + ivec2(1, 0));
-    aabb_min = uintBitsToFloat(a.xyz);
-    left_first = a.w;
-    aabb_max = uintBitsToFloat(b.xyz);
-    count = b.w;
+    node_fields(imageLoad(scene_nodes, c), imageLoad(scene_nodes, c + ivec2(1, 0)), aabb_min,
+                aabb_max, left_first, count);
 }
 
 // Both children of an interior node: nodes `first` and `first + 1`.
@@ -37,18 +42,10 @@ void bvh_load_children(uint first, out vec3 lmin, out vec3 lmax, out uint lfirst
                        out uint lcount, out vec3 rmin, out vec3 rmax, out uint rfirst,
                        out uint rcount) {
     ivec2 c = scene_texel_coord(NODE_TEXELS * (first + 1u));
-    uvec4 a = imageLoad(scene_nodes, c);
-    uvec4 b = imageLoad(scene_nodes, c + ivec2(1, 0));
-    uvec4 d = imageLoad(scene_nodes, c + ivec2(2, 0));
-    uvec4 e = imageLoad(scene_nodes, c + ivec2(3, 0));
-    lmin = uintBitsToFloat(a.xyz);
-    lfirst = a.w;
-    lmax = uintBitsToFloat(b.xyz);
-    lcount = b.w;
-    rmin = uintBitsToFloat(d.xyz);
-    rfirst = d.w;
-    rmax = uintBitsToFloat(e.xyz);
-    rcount = e.w;
+    node_fields(imageLoad(scene_nodes, c), imageLoad(scene_nodes, c + ivec2(1, 0)), lmin, lmax,
+                lfirst, lcount);
+    node_fields(imageLoad(scene_nodes, c + ivec2(2, 0)), imageLoad(scene_nodes, c + ivec2(3, 0)),
+                rmin, rmax, rfirst, rcount);
 }
 
 // A triangle with the shading fields stored next to it.

@@ -9,8 +9,9 @@ use blueshift_render::{
 use blueshift_scene::{Scene, SceneGpu};
 use glam::Vec3;
 
+/// Rec.709 luminance (the analysis crate's, which eval uses too).
 fn luminance(c: Vec3) -> f32 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+    blueshift_analysis::luminance(c.to_array())
 }
 
 #[test]

@@ -200,14 +200,7 @@ fn renderer_seeds_stay_a_permutation() {
     let gpu = Gpu::new();
     let dir = default_assets_dir().join("scenes/cornell-box.gltf");
     let s = Scene::load(dir).unwrap();
-    for method in [
-        Method::Sort,
-        Method::SortRetarget,
-        Method::SortRetargetReproject,
-        Method::SortRetargetEdges,
-        Method::SortRetargetPlus,
-        Method::SortRetargetDemod,
-    ] {
+    for method in Method::ALL.into_iter().filter(|m| m.sorts()) {
         let cfg = RenderConfig {
             bounces: 1,
             method,
