@@ -27,16 +27,19 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
 
 void main() {
     uint B = p.block;
-    uint blocks_x = (p.width + B - 1u) / B;
+    // Blocks start at (k * B - grid); partial blocks at the screen edges (CPU twin:
+    // permute block_counts / block_pixels).
+    uint blocks_x = (p.width + p.grid_x + B - 1u) / B;
     uint block = gl_GlobalInvocationID.x;
-    if (block >= blocks_x * ((p.height + B - 1u) / B)) return;
-    uvec2 origin = uvec2(block % blocks_x, block / blocks_x) * B;
+    if (block >= blocks_x * ((p.height + p.grid_y + B - 1u) / B)) return;
+    ivec2 origin = ivec2(uvec2(block % blocks_x, block / blocks_x) * B) - ivec2(p.grid_x, p.grid_y);
     // Visible pixels of the block in row-major order: (x, y) packed as y * B + x.
     uint cell[64], lum_key[64], mask_key[64], seed[64], cls[64];
     uint n = 0u;
     for (uint k = 0u; k < B * B; ++k) {
-        uvec2 px = origin + uvec2(k % B, k / B);
-        if (px.x >= p.width || px.y >= p.height) continue;
+        ivec2 q = origin + ivec2(k % B, k / B);
+        if (q.x < 0 || q.y < 0 || q.x >= int(p.width) || q.y >= int(p.height)) continue;
+        uvec2 px = uvec2(q);
         cell[n] = k;
         lum_key[n] = sort_key(estimate[px.y * p.width + px.x].w);
         uvec2 m = (px + uvec2(p.offset_x, p.offset_y)) % p.mask_size;
@@ -56,7 +59,7 @@ void main() {
         uint r = 0u;
         for (uint b = 0u; b < n; ++b) r += uint(before(cls[b], lum_key[b], b, cls[a], lum_key[a], a));
         uint k = cell[pos_of_mask_rank[r]];
-        uvec2 d = origin + uvec2(k % B, k / B);
+        uvec2 d = uvec2(origin + ivec2(k % B, k / B));
         seeds[d.y * p.stride + d.x] = seed[a];
     }
 }

@@ -76,50 +76,60 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
         let init: Vec<u32> = (0..sc.seed_count() as u32)
             .map(|i| i.wrapping_mul(2654435761))
             .collect();
-        let p = sc.sort_params(block, (5, 11)).unwrap();
-        let gb = Buffer::from_slice(gpu.dev(), "motion.gbuffer", &g).unwrap();
-        let classes = gpu.output::<u32>("motion.classes", (w * h) as usize);
-        let est_b = Buffer::from_slice(gpu.dev(), "motion.estimate", &est).unwrap();
-        let mask_b = Buffer::from_slice(gpu.dev(), "motion.mask", &mask).unwrap();
-        let seeds = Buffer::from_slice(gpu.dev(), "motion.seeds", &init).unwrap();
-        let rec = gpu.rec.as_mut().unwrap();
-        rec.begin().unwrap();
-        rec.begin_pass("classify").unwrap();
-        passes.classify_pixels(rec, &p, &gb, &classes).unwrap();
-        rec.begin_pass("sort").unwrap();
-        passes
-            .sort_seeds(rec, &p, &est_b, &mask_b, &classes, &seeds)
-            .unwrap();
-        rec.submit_and_wait().unwrap();
+        // The paper's fixed grid and the moving grid's offsets (sort-grid-*).
+        for grid in [(0, 0), (block / 2, block / 2), (block - 1, 1)] {
+            let p = sc.sort_params_on_grid(block, (5, 11), grid).unwrap();
+            let gb = Buffer::from_slice(gpu.dev(), "motion.gbuffer", &g).unwrap();
+            let classes = gpu.output::<u32>("motion.classes", (w * h) as usize);
+            let est_b = Buffer::from_slice(gpu.dev(), "motion.estimate", &est).unwrap();
+            let mask_b = Buffer::from_slice(gpu.dev(), "motion.mask", &mask).unwrap();
+            let seeds = Buffer::from_slice(gpu.dev(), "motion.seeds", &init).unwrap();
+            let rec = gpu.rec.as_mut().unwrap();
+            rec.begin().unwrap();
+            rec.begin_pass("classify").unwrap();
+            passes.classify_pixels(rec, &p, &gb, &classes).unwrap();
+            rec.begin_pass("sort").unwrap();
+            passes
+                .sort_seeds(rec, &p, &est_b, &mask_b, &classes, &seeds)
+                .unwrap();
+            rec.submit_and_wait().unwrap();
 
-        let cpu_classes = classify_pixels_cpu(&p, &g);
-        assert_eq!(
-            classes.read::<u32>().unwrap(),
-            cpu_classes,
-            "classes {w}x{h} B={block}"
-        );
-        let distinct = cpu_classes.iter().filter(|&&c| c != 0).count();
-        assert!(
-            distinct > 0,
-            "the test G-buffer must have edges inside blocks"
-        );
-        let mut cpu = init.clone();
-        sort_seeds_cpu(&p, &lum, &mask, &cpu_classes, &mut cpu);
-        assert_eq!(seeds.read::<u32>().unwrap(), cpu, "sort {w}x{h} B={block}");
-        // Within every block, each class holds the same set of seeds as before.
-        let key = |s: &[u32], x: u32, y: u32| {
-            (
-                x / block,
-                y / block,
-                cpu_classes[(y * w + x) as usize],
-                s[(y * sc.stride() + x) as usize],
-            )
-        };
-        let mut before: Vec<_> = (0..w * h).map(|i| key(&init, i % w, i / w)).collect();
-        let mut after: Vec<_> = (0..w * h).map(|i| key(&cpu, i % w, i / w)).collect();
-        before.sort_unstable();
-        after.sort_unstable();
-        assert_eq!(before, after, "a seed left its class {w}x{h} B={block}");
+            let cpu_classes = classify_pixels_cpu(&p, &g);
+            assert_eq!(
+                classes.read::<u32>().unwrap(),
+                cpu_classes,
+                "classes {w}x{h} B={block} grid {grid:?}"
+            );
+            let distinct = cpu_classes.iter().filter(|&&c| c != 0).count();
+            assert!(
+                distinct > 0,
+                "the test G-buffer must have edges inside blocks"
+            );
+            let mut cpu = init.clone();
+            sort_seeds_cpu(&p, &lum, &mask, &cpu_classes, &mut cpu);
+            assert_eq!(
+                seeds.read::<u32>().unwrap(),
+                cpu,
+                "sort {w}x{h} B={block} grid {grid:?}"
+            );
+            // Within every block, each class holds the same set of seeds as before.
+            let key = |s: &[u32], x: u32, y: u32| {
+                (
+                    (x + grid.0) / block,
+                    (y + grid.1) / block,
+                    cpu_classes[(y * w + x) as usize],
+                    s[(y * sc.stride() + x) as usize],
+                )
+            };
+            let mut before: Vec<_> = (0..w * h).map(|i| key(&init, i % w, i / w)).collect();
+            let mut after: Vec<_> = (0..w * h).map(|i| key(&cpu, i % w, i / w)).collect();
+            before.sort_unstable();
+            after.sort_unstable();
+            assert_eq!(
+                before, after,
+                "a seed left its class {w}x{h} B={block} grid {grid:?}"
+            );
+        }
     }
 }
 

@@ -36,6 +36,17 @@ fn estimate(lum: &[f32]) -> Vec<[f32; 4]> {
     lum.iter().map(|&l| [l, l, l, l]).collect()
 }
 
+/// Block grid offsets: the paper's fixed grid on every third frame, otherwise offsets that
+/// leave partial blocks on every side (the moving grid of sort-grid-*).
+fn grid_of(frame: u64, block: u32) -> (u32, u32) {
+    let f = frame as u32;
+    if f % 3 == 0 {
+        (0, 0)
+    } else {
+        (f % block, (f * 3 + 1) % block)
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 fn gpu_frame(
     gpu: &mut Gpu,
@@ -49,6 +60,9 @@ fn gpu_frame(
     seeds: [&Buffer; 2],
 ) {
     let off = mask_offset(frame, (12, 9), sc.tile);
+    let sp = sc
+        .sort_params_on_grid(block, off, grid_of(frame, block))
+        .unwrap();
     let est = Buffer::from_slice(gpu.dev(), "permute.estimate", &estimate(lum)).unwrap();
     let zeros = vec![0u32; lum.len()];
     let classes = Buffer::from_slice(gpu.dev(), "permute.classes", &zeros).unwrap();
@@ -56,14 +70,7 @@ fn gpu_frame(
     rec.begin().unwrap();
     rec.begin_pass("permute.sort_seeds").unwrap();
     passes
-        .sort_seeds(
-            rec,
-            &sc.sort_params(block, off).unwrap(),
-            &est,
-            mask,
-            &classes,
-            seeds[0],
-        )
+        .sort_seeds(rec, &sp, &est, mask, &classes, seeds[0])
         .unwrap();
     rec.begin_pass("permute.retarget_seeds").unwrap();
     passes
@@ -120,7 +127,8 @@ fn sort_and_retarget_match_cpu_and_stay_permutations() {
             );
             let off = mask_offset(f, (12, 9), n);
             sort_seeds_cpu(
-                &sc.sort_params(block, off).unwrap(),
+                &sc.sort_params_on_grid(block, off, grid_of(f, block))
+                    .unwrap(),
                 &lum,
                 &mask_data,
                 &vec![0; (w * h) as usize],

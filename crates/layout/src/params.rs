@@ -17,6 +17,10 @@ gpu_struct! {
         /// Mask offset of this frame: mask value at pixel p is M((p + offset) mod N).
         pub offset_x: u32,
         pub offset_y: u32,
+        /// Block grid offset G (each < B): blocks start at (k * B - G), so a grid that moves
+        /// between frames lets seeds cross last frame's block borders without retargeting.
+        pub grid_x: u32,
+        pub grid_y: u32,
     }
 }
 

@@ -30,52 +30,42 @@ pub fn sort_seeds_cpu(
     classes: &[u32],
     seeds: &mut [u32],
 ) {
-    let b = p.block;
     let n = p.mask_size;
-    for by in (0..p.height).step_by(b as usize) {
-        for bx in (0..p.width).step_by(b as usize) {
-            // Visible pixels of the block in row-major in-block order.
-            let mut px = Vec::new();
-            for ty in 0..b {
-                for tx in 0..b {
-                    let (x, y) = (bx + tx, by + ty);
-                    if x < p.width && y < p.height {
-                        px.push((x, y, (ty * b + tx) as usize));
-                    }
-                }
-            }
-            let lum_keys: Vec<_> = px
-                .iter()
-                .map(|&(x, y, i)| {
-                    let at = (y * p.width + x) as usize;
-                    (classes[at], sort_key(lum[at]), i)
-                })
-                .collect();
-            let mask_keys: Vec<_> = px
-                .iter()
-                .map(|&(x, y, i)| {
-                    let (mx, my) = ((x + p.offset_x) % n, (y + p.offset_y) % n);
-                    (
-                        classes[(y * p.width + x) as usize],
-                        mask[(my * n + mx) as usize],
-                        i,
-                    )
-                })
-                .collect();
-            let lum_rank = ranks(&lum_keys);
-            let mask_rank = ranks(&mask_keys);
-            let mut pos_of_mask_rank = vec![0usize; px.len()];
-            for (j, &r) in mask_rank.iter().enumerate() {
-                pos_of_mask_rank[r] = j;
-            }
-            let old: Vec<u32> = px
-                .iter()
-                .map(|&(x, y, _)| seeds[(y * p.stride + x) as usize])
-                .collect();
-            for (j, &r) in lum_rank.iter().enumerate() {
-                let (dx, dy, _) = px[pos_of_mask_rank[r]];
-                seeds[(dy * p.stride + dx) as usize] = old[j];
-            }
+    let (bx, by) = crate::block_counts(p);
+    for block in 0..bx * by {
+        // Visible pixels of the block in row-major in-block order.
+        let px = crate::block_pixels(p, block);
+        let lum_keys: Vec<_> = px
+            .iter()
+            .map(|&(x, y, i)| {
+                let at = (y * p.width + x) as usize;
+                (classes[at], sort_key(lum[at]), i)
+            })
+            .collect();
+        let mask_keys: Vec<_> = px
+            .iter()
+            .map(|&(x, y, i)| {
+                let (mx, my) = ((x + p.offset_x) % n, (y + p.offset_y) % n);
+                (
+                    classes[(y * p.width + x) as usize],
+                    mask[(my * n + mx) as usize],
+                    i,
+                )
+            })
+            .collect();
+        let lum_rank = ranks(&lum_keys);
+        let mask_rank = ranks(&mask_keys);
+        let mut pos_of_mask_rank = vec![0usize; px.len()];
+        for (j, &r) in mask_rank.iter().enumerate() {
+            pos_of_mask_rank[r] = j;
+        }
+        let old: Vec<u32> = px
+            .iter()
+            .map(|&(x, y, _)| seeds[(y * p.stride + x) as usize])
+            .collect();
+        for (j, &r) in lum_rank.iter().enumerate() {
+            let (dx, dy, _) = px[pos_of_mask_rank[r]];
+            seeds[(dy * p.stride + dx) as usize] = old[j];
         }
     }
 }

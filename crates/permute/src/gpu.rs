@@ -127,6 +127,7 @@ fn block_groups(p: &SortParams) -> Result<[u32; 3]> {
     if !(2..=8).contains(&p.block) {
         return Err(PermuteError::BlockSize(p.block));
     }
-    let blocks = p.width.div_ceil(p.block) * p.height.div_ceil(p.block);
+    let (bx, by) = crate::block_counts(p);
+    let blocks = bx * by;
     Ok([blocks.div_ceil(64), 1, 1])
 }

@@ -73,8 +73,22 @@ impl Screen {
     }
     /// Push constants for sorting frame `frame`.
     pub fn sort_params(&self, block: u32, offset: (u32, u32)) -> Result<SortParams> {
+        self.sort_params_on_grid(block, offset, (0, 0))
+    }
+    /// Push constants for sorting on a block grid offset by `grid` (each < `block`).
+    pub fn sort_params_on_grid(
+        &self,
+        block: u32,
+        offset: (u32, u32),
+        grid: (u32, u32),
+    ) -> Result<SortParams> {
         if !(2..=8).contains(&block) {
             return Err(PermuteError::BlockSize(block));
+        }
+        if grid.0 >= block || grid.1 >= block {
+            return Err(PermuteError::Invalid(format!(
+                "block grid offset {grid:?} must be below the block size {block}"
+            )));
         }
         Ok(SortParams {
             width: self.width,
@@ -84,6 +98,8 @@ impl Screen {
             mask_size: self.tile,
             offset_x: offset.0,
             offset_y: offset.1,
+            grid_x: grid.0,
+            grid_y: grid.1,
         })
     }
     pub fn retarget_params(&self, offset: (u32, u32)) -> RetargetParams {
@@ -94,6 +110,43 @@ impl Screen {
             offset_x: offset.0,
             offset_y: offset.1,
         }
+    }
+}
+
+/// Blocks per row and column of the sorting grid: blocks start at (k * B - G), so with a grid
+/// offset G the first and last blocks of a row or column may be partial.
+pub fn block_counts(p: &SortParams) -> (u32, u32) {
+    (
+        (p.width + p.grid_x).div_ceil(p.block),
+        (p.height + p.grid_y).div_ceil(p.block),
+    )
+}
+
+/// The visible pixels of block `index` (row-major over `block_counts`), in row-major in-block
+/// order, each with its in-block index `ty * B + tx`.
+pub fn block_pixels(p: &SortParams, index: u32) -> Vec<(u32, u32, usize)> {
+    let (bx, b) = (block_counts(p).0, p.block as i64);
+    let ox = (index % bx) as i64 * b - p.grid_x as i64;
+    let oy = (index / bx) as i64 * b - p.grid_y as i64;
+    let mut v = Vec::with_capacity((b * b) as usize);
+    for ty in 0..b {
+        for tx in 0..b {
+            let (x, y) = (ox + tx, oy + ty);
+            if x >= 0 && y >= 0 && x < p.width as i64 && y < p.height as i64 {
+                v.push((x as u32, y as u32, (ty * b + tx) as usize));
+            }
+        }
+    }
+    v
+}
+
+/// Grid offset of frame `frame` for the shifted-grid methods: (0, 0) and (B/2, B/2) in turn,
+/// so every block border of one frame lies inside a block of the next.
+pub fn grid_offset(frame: u64, block: u32) -> (u32, u32) {
+    if frame % 2 == 0 {
+        (0, 0)
+    } else {
+        (block / 2, block / 2)
     }
 }
 
@@ -129,4 +182,39 @@ pub fn is_permutation_of(seeds: &[u32], initial: &[u32]) -> bool {
     a.sort_unstable();
     b.sort_unstable();
     a == b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every visible pixel lies in exactly one block, at its in-block index, for every grid
+    /// offset, on screens that are multiples of neither the block nor the tile.
+    #[test]
+    fn blocks_partition_the_screen_on_every_grid() {
+        for (w, h, b) in [(13, 7, 2), (37, 23, 3), (64, 48, 4), (99, 61, 8)] {
+            let sc = Screen::new(w, h, 16).unwrap();
+            for gx in 0..b {
+                for gy in 0..b {
+                    let p = sc.sort_params_on_grid(b, (0, 0), (gx, gy)).unwrap();
+                    let (bx, by) = block_counts(&p);
+                    let mut hits = vec![0u32; (w * h) as usize];
+                    for k in 0..bx * by {
+                        let px = block_pixels(&p, k);
+                        assert!(px.len() <= (b * b) as usize);
+                        for (x, y, i) in px {
+                            let (ox, oy) = ((k % bx) * b, (k / bx) * b);
+                            assert_eq!(((x + gx - ox) + (y + gy - oy) * b) as usize, i);
+                            hits[(y * w + x) as usize] += 1;
+                        }
+                    }
+                    assert!(
+                        hits.iter().all(|&c| c == 1),
+                        "{w}x{h} B={b} grid ({gx}, {gy})"
+                    );
+                }
+            }
+            assert!(sc.sort_params_on_grid(b, (0, 0), (b, 0)).is_err());
+        }
+    }
 }

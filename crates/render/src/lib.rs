@@ -42,7 +42,7 @@ use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
     TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
-use blueshift_permute::{PermutePasses, Screen};
+use blueshift_permute::{PermutePasses, Screen, grid_offset, mask_offset};
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use passes::ImagePasses;
 use seeds::{key_words, seeds_of};
@@ -358,7 +358,16 @@ impl Renderer {
             self.dispatch_vertices,
         )?;
         if m.sorts() {
-            let sp = self.screen.sort_params(self.cfg.block, off)?;
+            let block = m.block(self.cfg.block);
+            let sp = if m.shifts_grid() {
+                // Sorted for the frame they will be rendered in: the next mask, the next grid.
+                let (shift, n) = (self.assets.shift, self.assets.n);
+                let next = mask_offset(self.frame + 1, shift, n);
+                let grid = grid_offset(self.frame + 1, block);
+                self.screen.sort_params_on_grid(block, next, grid)?
+            } else {
+                self.screen.sort_params(block, off)?
+            };
             self.record_classes(&tp, &sp)?;
             self.rec.begin_pass("sort")?;
             let classes = match (&self.motion, m.edge_aware()) {

@@ -31,10 +31,24 @@ pub enum Method {
     /// Ours: sorting + retargeting on a demodulated key (the estimate over the primary hit's
     /// base colour), so textures do not scramble the ranks.
     SortRetargetDemod,
+    /// Ours: no retargeting; each frame sorts GRID_BLOCK-sized blocks against the next
+    /// frame's mask on a block grid that moves by half a block every other frame, so seeds
+    /// cross block borders but never move more than GRID_BLOCK - 1 pixels per frame.
+    SortGrid,
+    /// Ours: `SortGrid` ranking only within surfaces (G-buffer classes): seeds never leave
+    /// their surface.
+    SortGridEdges,
+    /// Ours: `SortGridEdges` with reprojection and the demodulated key.
+    SortGridPlus,
 }
 
+/// Block edge of the moving-grid methods, whatever the paper's block size: without
+/// retargeting, the blocks alone carry seeds across the screen, and 8 (the largest the
+/// sorting pass allows) measured best on the bundled scenes (README, "Beyond the paper").
+pub const GRID_BLOCK: u32 = 8;
+
 impl Method {
-    pub const ALL: [Method; 12] = [
+    pub const ALL: [Method; 15] = [
         Method::White,
         Method::WhiteFixed,
         Method::Sobol,
@@ -47,6 +61,9 @@ impl Method {
         Method::SortRetargetEdges,
         Method::SortRetargetPlus,
         Method::SortRetargetDemod,
+        Method::SortGrid,
+        Method::SortGridEdges,
+        Method::SortGridPlus,
     ];
 
     pub fn name(self) -> &'static str {
@@ -63,6 +80,9 @@ impl Method {
             Method::SortRetargetEdges => "sort-retarget-edges",
             Method::SortRetargetPlus => "sort-retarget-plus",
             Method::SortRetargetDemod => "sort-retarget-demod",
+            Method::SortGrid => "sort-grid",
+            Method::SortGridEdges => "sort-grid-edges",
+            Method::SortGridPlus => "sort-grid-plus",
         }
     }
 
@@ -86,7 +106,25 @@ impl Method {
 
     /// Whether the sorting pass runs.
     pub fn sorts(self) -> bool {
-        self == Method::Sort || self.retargets()
+        self == Method::Sort || self.shifts_grid() || self.retargets()
+    }
+
+    /// Whether sorting runs on a moving block grid against the next frame's mask (instead of
+    /// retargeting).
+    pub fn shifts_grid(self) -> bool {
+        matches!(
+            self,
+            Method::SortGrid | Method::SortGridEdges | Method::SortGridPlus
+        )
+    }
+
+    /// The sorting block edge: `requested` (the paper's B) or GRID_BLOCK for the moving grid.
+    pub fn block(self, requested: u32) -> u32 {
+        if self.shifts_grid() {
+            GRID_BLOCK
+        } else {
+            requested
+        }
     }
 
     /// Whether the sample index advances with the frame (a progressive sequence per pixel).
@@ -110,18 +148,27 @@ impl Method {
     pub fn reprojects(self) -> bool {
         matches!(
             self,
-            Method::SortRetargetReproject | Method::SortRetargetPlus
+            Method::SortRetargetReproject | Method::SortRetargetPlus | Method::SortGridPlus
         )
     }
 
     /// Whether the sorting key is demodulated by the primary hit's base colour.
     pub fn demodulates(self) -> bool {
-        matches!(self, Method::SortRetargetDemod | Method::SortRetargetPlus)
+        matches!(
+            self,
+            Method::SortRetargetDemod | Method::SortRetargetPlus | Method::SortGridPlus
+        )
     }
 
     /// Whether sorting ranks within G-buffer surface classes.
     pub fn edge_aware(self) -> bool {
-        matches!(self, Method::SortRetargetEdges | Method::SortRetargetPlus)
+        matches!(
+            self,
+            Method::SortRetargetEdges
+                | Method::SortRetargetPlus
+                | Method::SortGridEdges
+                | Method::SortGridPlus
+        )
     }
 }
 

@@ -11,8 +11,10 @@ struct SortParams {
     uint mask_size; // offset 16, size 4
     uint offset_x; // offset 20, size 4
     uint offset_y; // offset 24, size 4
+    uint grid_x; // offset 28, size 4
+    uint grid_y; // offset 32, size 4
 };
-const uint SORT_PARAMS_SIZE = 28;
+const uint SORT_PARAMS_SIZE = 36;
 
 struct RetargetParams {
     uint padded_width; // offset 0, size 4

@@ -10,9 +10,9 @@ pub const VIEW_METHODS: [Method; 10] = [
     Method::Stbn,
     Method::Sort,
     Method::SortRetarget,
-    Method::SortRetargetReproject,
-    Method::SortRetargetEdges,
     Method::SortRetargetPlus,
+    Method::SortGrid,
+    Method::SortGridPlus,
     Method::Hbo19,
 ];
 /// Limits of the interactive controls (the renderer accepts more; these stay interactive).
