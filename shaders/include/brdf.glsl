@@ -7,8 +7,15 @@
 // weight keeps every channel's albedo <= 1 (energy conserved). Sampling picks a lobe
 // with a probability from the Fresnel weight at the view angle; pdfs are the lobe mixture so
 // MIS with light sampling is consistent. All vectors in world space, n facing wo.
+// BRDF_LAMBERT 1 (before the include) compiles out the specular lobe, for scenes whose
+// materials all have metallic = specular = 0: there the full BRDF is exactly Lambert (the
+// specular terms are exact zeros, the lobe probability 0), so results are bit-identical.
 #ifndef BRDF_GLSL
 #define BRDF_GLSL
+
+#ifndef BRDF_LAMBERT
+#define BRDF_LAMBERT 0
+#endif
 
 const float PI = 3.14159265358979;
 // Below this GGX becomes numerically a delta; clamping keeps pdfs finite.
@@ -75,22 +82,30 @@ float brdf_spec_prob(BrdfInput m, float n_v) {
 vec3 brdf_eval(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
     float n_l = dot(n, wi), n_v = dot(n, wo);
     if (n_l <= 0.0 || n_v <= 0.0) return vec3(0.0);
+#if BRDF_LAMBERT
+    return m.base / PI;
+#else
     vec3 h = normalize(wo + wi);
     float n_h = max(dot(n, h), 0.0), v_h = max(dot(wo, h), 0.0);
     float a2 = brdf_alpha2(m);
     vec3 spec = brdf_fresnel(m, v_h) * ggx_d(n_h, a2) * smith_v(n_v, n_l, a2);
     vec3 diff = brdf_diffuse_weight(m, v_h) * m.base / PI;
     return diff + spec;
+#endif
 }
 
 float brdf_pdf(BrdfInput m, vec3 n, vec3 wo, vec3 wi) {
     float n_l = dot(n, wi), n_v = dot(n, wo);
     if (n_l <= 0.0 || n_v <= 0.0) return 0.0;
+#if BRDF_LAMBERT
+    return n_l / PI;
+#else
     vec3 h = normalize(wo + wi);
     float n_h = max(dot(n, h), 0.0), v_h = max(dot(wo, h), 1e-8);
     float ps = brdf_spec_prob(m, n_v);
     float spec_pdf = ggx_d(n_h, brdf_alpha2(m)) * n_h / (4.0 * v_h);
     return ps * spec_pdf + (1.0 - ps) * n_l / PI;
+#endif
 }
 
 // Orthonormal basis around n (Duff et al. 2017).
@@ -107,7 +122,7 @@ bool brdf_sample(BrdfInput m, vec3 n, vec3 wo, float u_lobe, vec2 u, out vec3 wi
     vec3 t, b;
     onb(n, t, b);
     float phi = 2.0 * PI * u.y;
-    if (u_lobe < brdf_spec_prob(m, dot(n, wo))) {
+    if (BRDF_LAMBERT == 0 && u_lobe < brdf_spec_prob(m, dot(n, wo))) {
         float a2 = brdf_alpha2(m);
         float cos_t = sqrt((1.0 - u.x) / (1.0 + (a2 - 1.0) * u.x));
         float sin_t = sqrt(max(0.0, 1.0 - cos_t * cos_t));

@@ -12,6 +12,8 @@
 //                       TraceParams field: chosen at run time)
 //   TRACE_MASK          1: blue-noise mask modes (TraceParams::mask_mode) supported; 0: mask off
 //   TRACE_TEXTURES      1: material textures and uvs; 0: texture indices ignored (no textures)
+//   TRACE_LAMBERT       1: every material the triangles use has metallic = specular = 0, so
+//                       the BRDF is Lambert alone (BRDF_LAMBERT, brdf.glsl); 0: full glTF
 //   TRACE_HBO19         1: samples from hbo19_lookup_bits with the key table at binding 11
 //                       (optional, default 0: sample_bits(TRACE_SAMPLER_KIND, ...))
 // The variants differ only in dead code: llvmpipe runs both sides of every branch, so
@@ -70,6 +72,10 @@ uint g_loop_ticks;
 
 #include "scene_texels.glsl"
 #include "bvh.glsl"
+#ifndef TRACE_LAMBERT
+#define TRACE_LAMBERT 0
+#endif
+#define BRDF_LAMBERT TRACE_LAMBERT
 #include "brdf.glsl"
 #include "textures.glsl"
 #include "path.glsl"

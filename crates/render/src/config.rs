@@ -33,6 +33,10 @@ pub struct RenderConfig {
     pub loop_guard: u32,
     /// The seed map of frame 0 (the `hbo19` method always uses [`SeedMap::Hbo19`]).
     pub seed_map: SeedMap,
+    /// Trace with the Lambert-only shader variant when the scene allows it (every material a
+    /// triangle uses has metallic = specular = 0; same images, bit for bit). `false` keeps
+    /// the full BRDF (tests, timing).
+    pub lambert_variant: bool,
 }
 
 impl RenderConfig {
@@ -52,6 +56,7 @@ impl RenderConfig {
             no_jitter: false,
             loop_guard: TRACE_LOOP_GUARD,
             seed_map: SeedMap::Random,
+            lambert_variant: true,
         }
     }
 

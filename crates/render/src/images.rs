@@ -18,6 +18,9 @@ pub struct SceneImages {
     pub lights: Image,
     /// Whether any material uses a texture (selects the trace variant with texture lookups).
     pub textured: bool,
+    /// Whether every material a triangle uses has metallic = specular = 0 (selects the
+    /// Lambert-only trace variant: the glTF BRDF is then exactly Lambert).
+    pub lambert: bool,
 }
 
 impl std::fmt::Debug for SceneImages {
@@ -25,6 +28,7 @@ impl std::fmt::Debug for SceneImages {
         f.debug_struct("SceneImages")
             .field("nodes", &(self.nodes.width, self.nodes.height))
             .field("textured", &self.textured)
+            .field("lambert", &self.lambert)
             .finish_non_exhaustive()
     }
 }
@@ -65,6 +69,11 @@ impl SceneImages {
                 .materials
                 .iter()
                 .any(|m| m.base_color_tex >= 0 || m.emissive_tex >= 0 || m.mr_tex >= 0),
+            // (A metallic-roughness texture scales metallic, so 0 stays 0.)
+            lambert: scene.shading.iter().all(|t| {
+                let m = scene.materials.get(t.material as usize);
+                m.is_some_and(|m| m.metallic == 0.0 && m.specular == 0.0)
+            }),
         };
         rec.submit_and_wait()?;
         drop(staging);

@@ -149,7 +149,8 @@ impl Renderer {
         let gpu_scene = SceneGpu::build(scene);
         let scene_buffers = SceneBuffers::new(dev, &gpu_scene)?;
         let image_passes = ImagePasses::new(dev)?;
-        let scene_images = SceneImages::new(dev, &image_passes, &gpu_scene)?;
+        let mut scene_images = SceneImages::new(dev, &image_passes, &gpu_scene)?;
+        scene_images.lambert &= cfg.lambert_variant;
         let screen = Screen::new(cfg.width, cfg.height, assets.n)?;
         let initial = seeds_of(&cfg, &screen, assets)?;
         let (words, keys_spp) = key_words(&cfg, assets)?;

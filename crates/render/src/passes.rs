@@ -11,8 +11,8 @@ use blueshift_sampling::Sampler;
 
 pub struct ImagePasses {
     dev: Device,
-    /// Path-tracer variants created so far, by [`TraceVariant::shader`] name.
-    trace: Vec<(&'static str, ComputePipeline)>,
+    /// Path-tracer variants created so far.
+    trace: Vec<(TraceVariant, ComputePipeline)>,
     accumulate: ComputePipeline,
     tonemap: ComputePipeline,
     upload: ComputePipeline,
@@ -70,6 +70,8 @@ pub struct TraceVariant {
     pub mask: bool,
     /// Material textures (any material has one).
     pub textures: bool,
+    /// The Lambert-only BRDF (every material has metallic = specular = 0).
+    pub lambert: bool,
 }
 
 impl TraceVariant {
@@ -83,36 +85,20 @@ impl TraceVariant {
             sampler,
             mask: p.mask_mode != MASK_MODE_NONE,
             textures: scene.textured,
+            lambert: scene.lambert,
         })
     }
 
-    /// The shader name, `trace/variants/<sampler>[_mask][_tex]`.
-    pub fn shader(self) -> &'static str {
-        const NAMES: [&str; 16] = [
-            "trace/variants/white",
-            "trace/variants/white_tex",
-            "trace/variants/white_mask",
-            "trace/variants/white_mask_tex",
-            "trace/variants/sobol",
-            "trace/variants/sobol_tex",
-            "trace/variants/sobol_mask",
-            "trace/variants/sobol_mask_tex",
-            "trace/variants/r2",
-            "trace/variants/r2_tex",
-            "trace/variants/r2_mask",
-            "trace/variants/r2_mask_tex",
-            "trace/variants/hbo19",
-            "trace/variants/hbo19_tex",
-            "trace/variants/hbo19_mask",
-            "trace/variants/hbo19_mask_tex",
-        ];
-        let s = match self.sampler {
-            Sampler::White => 0,
-            Sampler::Sobol => 1,
-            Sampler::R2 => 2,
-            Sampler::Hbo19 => 3,
-        };
-        NAMES[s * 4 + usize::from(self.mask) * 2 + usize::from(self.textures)]
+    /// The shader name, `trace/variants/<sampler>[_mask][_tex][_lambert]`.
+    pub fn shader(self) -> String {
+        let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
+        format!(
+            "trace/variants/{}{}{}{}",
+            self.sampler.name(),
+            flag(self.mask, "_mask"),
+            flag(self.textures, "_tex"),
+            flag(self.lambert, "_lambert"),
+        )
     }
 }
 
@@ -195,12 +181,12 @@ impl ImagePasses {
     /// The path-tracer pipeline of `variant`, created on first use (lavapipe compiles a
     /// pipeline on its first dispatch, so unused variants cost nothing).
     fn trace_pipeline(&mut self, variant: TraceVariant) -> Result<&ComputePipeline> {
-        let name = variant.shader();
-        let i = match self.trace.iter().position(|(n, _)| *n == name) {
+        let i = match self.trace.iter().position(|(v, _)| *v == variant) {
             Some(i) => i,
             None => {
-                let p = pipeline(&self.dev, name, &TRACE_BINDINGS, size_of::<TraceParams>())?;
-                self.trace.push((name, p));
+                let name = variant.shader();
+                let p = pipeline(&self.dev, &name, &TRACE_BINDINGS, size_of::<TraceParams>())?;
+                self.trace.push((variant, p));
                 self.trace.len() - 1
             }
         };
@@ -343,5 +329,21 @@ mod tests {
         assert_eq!(next_dispatch_vertices(0, 0, 0), TRACE_MAX_DISPATCH_VERTICES);
         assert_eq!(samples_per_dispatch(400, 7), 50);
         assert_eq!(samples_per_dispatch(64, 100), 1);
+    }
+
+    #[test]
+    fn every_variant_names_a_compiled_shader() {
+        let names: Vec<&str> = blueshift_shaders::names().collect();
+        for sampler in Sampler::ALL {
+            for bits in 0..8 {
+                let v = TraceVariant {
+                    sampler,
+                    mask: bits & 1 != 0,
+                    textures: bits & 2 != 0,
+                    lambert: bits & 4 != 0,
+                };
+                assert!(names.contains(&v.shader().as_str()), "{v:?}");
+            }
+        }
     }
 }

@@ -1,0 +1,10 @@
+#version 460
+// Path-tracer variant: sampler hbo19 (keys from binding 11),
+// blue-noise mask off, textures on, Lambert BRDF only.
+// See ../trace_body.glsl.
+#define TRACE_SAMPLER_KIND SAMPLER_HBO19
+#define TRACE_HBO19 1
+#define TRACE_MASK 0
+#define TRACE_TEXTURES 1
+#define TRACE_LAMBERT 1
+#include "../trace_body.glsl"
