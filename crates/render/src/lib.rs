@@ -31,7 +31,7 @@ pub use camera_path::{CameraPath, Keyframe};
 pub use config::RenderConfig;
 pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
-pub use method::Method;
+pub use method::{GRID_BLOCK, Method};
 pub use motion::motion_params;
 pub use passes::{LLVMPIPE_LOOP_LIMIT, TRACE_BINDINGS, TRACE_LOOP_GUARD, TraceVariant};
 pub use seeds::{SeedMap, initial_seeds, tile_seeds};

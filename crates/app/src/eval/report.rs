@@ -140,7 +140,7 @@ fn markdown(
     writeln!(md, "# Blueshift evaluation: {}\n", a.scene)?;
     writeln!(
         md,
-        "{}x{}, {} frames (metrics over frames {}-{}), block {}, reference {} spp, {} sequence(s); \
+        "{}x{}, {} frames (metrics over frames {}-{}), block {} (sort-grid-*: {}), reference {} spp, {} sequence(s); \
          device {} ({} {}); commit {}; {:.0} s.\n",
         a.width,
         a.height,
@@ -148,6 +148,7 @@ fn markdown(
         a.frames / 2,
         a.frames - 1,
         a.block,
+        blueshift_render::GRID_BLOCK,
         a.reference_spp,
         a.sequences,
         info.name,
