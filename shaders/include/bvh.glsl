@@ -225,15 +225,17 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
 // A node costs a fetch of its own two texels and one slab test and nothing is pushed (the
 // stack's per-lane stores were a fifth of an interior step of the closest hit; measured 20%
 // more samples per CPU second on the Cornell box than the stack traversal). The inner
-// loop walks to the next leaf whose box is hit and stays on it; only `node`, carried from
-// iteration to iteration, leaves the loop (llvmpipe does not keep a lane's own last values
-// of the loop's other variables for use after the loop), so the leaf is fetched again.
+// loop walks to the next leaf whose box is hit. Only loop-carried values
+// (read before they are written in the body) leave the loop: llvmpipe does not keep a lane's
+// own last values of the others for use after the loop. So the leaf's fields are kept by
+// selects (5% faster than fetching the leaf again).
 bool bvh_occluded(Ray ray) {
     vec3 inv = bvh_safe_inverse(ray.dir);
-    uint node = 0u;
+    uint node = 0u, leaf_first = 0u, leaf_count = 0u, leaf_skip = 0u;
     bool occluded = false;
     do {
         BVH_LOOP_TICK;
+        leaf_count = 0u;  // no leaf reached yet
         bool walk = true;
         do {
             BVH_LOOP_TICK;
@@ -242,15 +244,15 @@ bool bvh_occluded(Ray ray) {
             bvh_load_node(node, bmin, bmax, first, count, skip);
             float tnear;
             bool hit = bvh_box_entry(bmin, bmax, ray.origin, inv, ray.tmin, ray.tmax, tnear);
-            walk = !(hit && count > 0u);
-            node = walk ? (hit ? first : skip) : node;
-            walk = walk && node != 0u;
+            bool leaf = hit && count > 0u;
+            leaf_first = leaf ? first : leaf_first;
+            leaf_count = leaf ? count : leaf_count;
+            leaf_skip = leaf ? skip : leaf_skip;
+            node = hit ? first : skip;
+            walk = !leaf && node != 0u;
         } while (walk);
-        if (node != 0u) {
-            vec3 bmin, bmax;
-            uint first, count, skip;
-            bvh_load_node(node, bmin, bmax, first, count, skip);
-            uint i = first, end = first + count;
+        if (leaf_count > 0u) {
+            uint i = leaf_first, end = leaf_first + leaf_count;
             do {
                 BVH_LOOP_TICK;
                 float t, u, v;
@@ -259,7 +261,7 @@ bool bvh_occluded(Ray ray) {
                 }
                 i++;
             } while (i < end);
-            node = skip;
+            node = leaf_skip;
         }
     } while (node != 0u && !occluded);
     return occluded;
