@@ -8,7 +8,7 @@
 //   #include "generated/scene.glsl"             // BvhNode, GpuTriangle, Ray, Hit, BVH_STACK_SIZE
 // and the two fetch functions (where the data lives is the includer's choice):
 //   void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
-//                      out uint count);         // the fields of BvhNode `index`
+//                      out uint count, out uint skip);  // the fields of BvhNode `index`
 //   void bvh_load_children(uint first, out vec3 lmin, out vec3 lmax, out uint lfirst,
 //                          out uint lcount, out vec3 rmin, out vec3 rmax, out uint rfirst,
 //                          out uint rcount);  // nodes `first` and `first + 1`
@@ -24,8 +24,9 @@
 // lanes): the current node's fields stay in registers (an interior node costs one fetch of
 // its two children, which carries their fields; a leaf one fetch per triangle), and each
 // iteration of the traversal loop descends through interior nodes in an inner loop, tests
-// the leaf it reached right away, then pops. The nodes visited and triangles tested, and
-// their order, are exactly those of the Rust loop (one node per iteration there).
+// the leaf it reached right away, then pops. Occlusion needs no stack (see bvh_occluded).
+// The nodes visited and triangles tested, and their order, are exactly those of the Rust
+// loops (one node per iteration there).
 // Inner loops are written bottom-tested (`if (c) do { .. } while (c)`): llvmpipe runs a loop
 // body once more after the last lane's last iteration when the test is at the top (the exit
 // check sees the mask only at the end of the body), which cost 16% of the pass here.
@@ -46,18 +47,20 @@
 
 #ifdef BVH_FROM_BUFFERS
 void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
-                   out uint count) {
+                   out uint count, out uint skip) {
     aabb_min = bvh_nodes[index].aabb_min;
     left_first = bvh_nodes[index].left_first;
     aabb_max = bvh_nodes[index].aabb_max;
     count = bvh_nodes[index].count;
+    skip = bvh_nodes[index].skip;
 }
 
 void bvh_load_children(uint first, out vec3 lmin, out vec3 lmax, out uint lfirst,
                        out uint lcount, out vec3 rmin, out vec3 rmax, out uint rfirst,
                        out uint rcount) {
-    bvh_load_node(first, lmin, lmax, lfirst, lcount);
-    bvh_load_node(first + 1u, rmin, rmax, rfirst, rcount);
+    uint skip;
+    bvh_load_node(first, lmin, lmax, lfirst, lcount, skip);
+    bvh_load_node(first + 1u, rmin, rmax, rfirst, rcount, skip);
 }
 
 GpuTriangle bvh_load_triangle(uint index) { return bvh_triangles[index]; }
@@ -141,8 +144,8 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
     hit.v = 0.0;
     vec3 inv = bvh_safe_inverse(ray.dir);
     vec3 bmin, bmax;
-    uint first, count;  // the current node
-    bvh_load_node(0u, bmin, bmax, first, count);
+    uint first, count, skip;  // the current node
+    bvh_load_node(0u, bmin, bmax, first, count, skip);
     float t_root;
     if (!bvh_box_entry(bmin, bmax, ray.origin, inv, ray.tmin, hit.t, t_root)) {
         return false;
@@ -217,42 +220,39 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
     return hit.triangle != HIT_MISS;
 }
 
+// Stackless: any hit needs no front-to-back order, so the traversal follows the skip links
+// (BvhNode::skip: into the left child on a box hit, else past the subtree; node 0 = done).
+// A node costs a fetch of its own two texels and one slab test and nothing is pushed (the
+// stack's per-lane stores were a fifth of an interior step of the closest hit; measured 26%
+// more samples per CPU second on the Cornell box than the stack traversal). The inner
+// loop walks to the next leaf whose box is hit. Only loop-carried values
+// (read before they are written in the body) leave the loop: llvmpipe does not keep a lane's
+// own last values of the others for use after the loop. So the leaf's fields are kept by
+// selects (5% faster than fetching the leaf again).
 bool bvh_occluded(Ray ray) {
     vec3 inv = bvh_safe_inverse(ray.dir);
-    vec3 bmin, bmax;
-    uint first, count;
-    bvh_load_node(0u, bmin, bmax, first, count);
-    float t_root;
-    if (!bvh_box_entry(bmin, bmax, ray.origin, inv, ray.tmin, ray.tmax, t_root)) {
-        return false;
-    }
-    uint stack[BVH_STACK_SIZE];
-    uint sp = 0u;
+    uint node = 0u, leaf_first = 0u, leaf_count = 0u, leaf_skip = 0u;
     bool occluded = false;
-    while (true) {
+    do {
         BVH_LOOP_TICK;
-        bool pop = false;
-        if (count == 0u) {
-            do {
-                BVH_LOOP_TICK;
-                vec3 lmin, lmax, rmin, rmax;
-                uint lfirst, lcount, rfirst, rcount;
-                bvh_load_children(first, lmin, lmax, lfirst, lcount, rmin, rmax, rfirst,
-                                  rcount);
-                float tl, tr;
-                bool hl = bvh_box_entry(lmin, lmax, ray.origin, inv, ray.tmin, ray.tmax, tl);
-                bool hr = bvh_box_entry(rmin, rmax, ray.origin, inv, ray.tmin, ray.tmax, tr);
-                if (hl && hr && sp < BVH_STACK_SIZE) {
-                    stack[sp] = (rfirst << BVH_COUNT_BITS) | rcount;
-                    sp++;
-                }
-                first = hl ? lfirst : rfirst;
-                count = hl ? lcount : rcount;
-                pop = !hl && !hr;
-            } while (count == 0u && !pop);
-        }
-        if (count > 0u && !pop) {
-            uint i = first, end = first + count;
+        leaf_count = 0u;  // no leaf reached yet
+        bool walk = true;
+        do {
+            BVH_LOOP_TICK;
+            vec3 bmin, bmax;
+            uint first, count, skip;
+            bvh_load_node(node, bmin, bmax, first, count, skip);
+            float tnear;
+            bool hit = bvh_box_entry(bmin, bmax, ray.origin, inv, ray.tmin, ray.tmax, tnear);
+            bool leaf = hit && count > 0u;
+            leaf_first = leaf ? first : leaf_first;
+            leaf_count = leaf ? count : leaf_count;
+            leaf_skip = leaf ? skip : leaf_skip;
+            node = hit ? first : skip;
+            walk = !leaf && node != 0u;
+        } while (walk);
+        if (leaf_count > 0u) {
+            uint i = leaf_first, end = leaf_first + leaf_count;
             do {
                 BVH_LOOP_TICK;
                 float t, u, v;
@@ -261,20 +261,9 @@ bool bvh_occluded(Ray ray) {
                 }
                 i++;
             } while (i < end);
-            pop = true;
+            node = leaf_skip;
         }
-        if (occluded) {
-            break;
-        }
-        if (pop) {
-            if (sp == 0u) {
-                break;
-            }
-            sp--;
-            first = stack[sp] >> BVH_COUNT_BITS;
-            count = stack[sp] & ((1u << BVH_COUNT_BITS) - 1u);
-        }
-    }
+    } while (node != 0u && !occluded);
     return occluded;
 }
 

@@ -18,23 +18,24 @@ ivec2 scene_texel_coord(uint k) {
 
 #define SCENE_TEXEL(image, k) imageLoad(image, scene_texel_coord(k))
 
-// The fields of a BvhNode from its two texels.
+// The fields of a BvhNode from its two texels (count and skip share b.w).
 void node_fields(uvec4 a, uvec4 b, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
                  out uint count) {
     aabb_min = uintBitsToFloat(a.xyz);
     left_first = a.w;
     aabb_max = uintBitsToFloat(b.xyz);
-    count = b.w;
+    count = b.w & ((1u << NODE_COUNT_BITS) - 1u);
 }
 
 // Node `index` starts at texel NODE_TEXELS * (index + 1) (one node of padding first), so the
 // children of a node (an odd index and the next) are four texels of one row, like the four
 // texels of a triangle: one coordinate computation per pair or triangle (texels.rs).
 void bvh_load_node(uint index, out vec3 aabb_min, out vec3 aabb_max, out uint left_first,
-                   out uint count) {
+                   out uint count, out uint skip) {
     ivec2 c = scene_texel_coord(NODE_TEXELS * (index + 1u));
-    node_fields(imageLoad(scene_nodes, c), imageLoad(scene_nodes, c + ivec2(1, 0)), aabb_min,
-                aabb_max, left_first, count);
+    uvec4 b = imageLoad(scene_nodes, c + ivec2(1, 0));
+    node_fields(imageLoad(scene_nodes, c), b, aabb_min, aabb_max, left_first, count);
+    skip = b.w >> NODE_COUNT_BITS;
 }
 
 // Both children of an interior node: nodes `first` and `first + 1`.

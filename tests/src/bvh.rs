@@ -1,5 +1,5 @@
 //! GPU BVH traversal (shaders/include/bvh.glsl) == CPU traversal (blueshift-scene) on random
-//! and camera rays over every bundled scene and a random-triangle soup.
+//! and camera rays over every bundled scene, a random-triangle soup and a quad.
 use crate::{Gpu, groups_for};
 use blueshift_device::Binding;
 use blueshift_device::Buffer;
@@ -125,4 +125,11 @@ fn gpu_traversal_matches_cpu_on_bundled_scenes_and_a_soup() {
         check(&mut gpu, name, &scene, 30_000);
     }
     check(&mut gpu, "soup", &soup(3000), 30_000);
+    // A root that is a leaf (the stackless occlusion must test it too): a quad.
+    let mut quad = soup(2);
+    let c = [Vec3::ZERO, Vec3::X, Vec3::ONE.with_z(0.0), Vec3::Y];
+    quad.triangles[0].positions = [c[0], c[1], c[2]];
+    quad.triangles[1].positions = [c[0], c[2], c[3]];
+    assert_eq!(SceneGpu::build(&quad).nodes.len(), 1);
+    check(&mut gpu, "quad", &quad, 1_000);
 }

@@ -1,9 +1,9 @@
 //! CPU ray/BVH intersection, the twin of `shaders/include/bvh.glsl`.
 //!
-//! Same traversal (fixed stack, near child first, far child pushed with its entry distance;
-//! the GLSL keeps the current node's `left_first`/`count` in registers and pushes those, where
-//! this code keeps node indices: the same nodes in the same order),
-//! same ray/box slab test, same Möller–Trumbore operation order (no fused multiply-adds on
+//! Same closest-hit traversal (fixed stack, near child first, far child pushed with its entry
+//! distance; the GLSL keeps the current node's `left_first`/`count` in registers and pushes
+//! those, where this code keeps node indices: the same nodes in the same order), same
+//! stackless occlusion traversal (skip links), same ray/box slab test, same Möller–Trumbore operation order (no fused multiply-adds on
 //! either side: the GLSL marks these computations `precise`). Closest hit is the smallest `t`
 //! in `[tmin, tmax]`, ties broken by the smaller triangle index, so the BVH and the
 //! brute-force loop agree exactly.
@@ -156,79 +156,33 @@ pub fn closest_hit(nodes: &[BvhNode], triangles: &[GpuTriangle], ray: &Ray) -> O
     Hit::from_gpu(hit)
 }
 
-/// Any hit with `tmin <= t <= tmax` through the BVH (shadow rays).
+/// Any hit with `tmin <= t <= tmax` through the BVH (shadow rays). Stackless: any hit needs no
+/// front-to-back order, so it follows the skip links of [`BvhNode`] (into the left child on a
+/// box hit, else past the subtree), visiting the nodes of a left-first stack traversal in the
+/// same order.
 pub fn occluded(nodes: &[BvhNode], triangles: &[GpuTriangle], ray: &Ray) -> bool {
-    let Some(root) = nodes.first() else {
-        return false;
-    };
-    let inv = safe_inverse(ray.dir);
-    if box_entry(
-        root.aabb_min,
-        root.aabb_max,
-        ray.origin,
-        inv,
-        ray.tmin,
-        ray.tmax,
-    )
-    .is_none()
-    {
+    if nodes.is_empty() {
         return false;
     }
-    let mut stack = [0u32; BVH_STACK_SIZE as usize];
-    let mut sp = 0usize;
+    let inv = safe_inverse(ray.dir);
     let mut node = 0usize;
     loop {
         let n = &nodes[node];
-        if n.count > 0 {
+        let hit = box_entry(n.aabb_min, n.aabb_max, ray.origin, inv, ray.tmin, ray.tmax);
+        if hit.is_some() && n.count > 0 {
             for i in n.left_first..n.left_first + n.count {
                 if intersect_triangle(ray, &triangles[i as usize], ray.tmax).is_some() {
                     return true;
                 }
             }
-        } else {
-            let (l, r) = (n.left_first as usize, n.left_first as usize + 1);
-            let (nl, nr) = (&nodes[l], &nodes[r]);
-            let hl = box_entry(
-                nl.aabb_min,
-                nl.aabb_max,
-                ray.origin,
-                inv,
-                ray.tmin,
-                ray.tmax,
-            );
-            let hr = box_entry(
-                nr.aabb_min,
-                nr.aabb_max,
-                ray.origin,
-                inv,
-                ray.tmin,
-                ray.tmax,
-            );
-            match (hl, hr) {
-                (Some(_), Some(_)) => {
-                    if sp < stack.len() {
-                        stack[sp] = r as u32;
-                        sp += 1;
-                    }
-                    node = l;
-                    continue;
-                }
-                (Some(_), None) => {
-                    node = l;
-                    continue;
-                }
-                (None, Some(_)) => {
-                    node = r;
-                    continue;
-                }
-                (None, None) => {}
-            }
         }
-        if sp == 0 {
+        node = match hit {
+            Some(_) if n.count == 0 => n.left_first,
+            _ => n.skip,
+        } as usize;
+        if node == 0 {
             return false;
         }
-        sp -= 1;
-        node = stack[sp] as usize;
     }
 }
 

@@ -14,6 +14,7 @@ const uint TEXTURE_WRAP_MIRROR = 2u;
 const uint TEXTURE_FILTER_NEAREST = 16u;
 const uint SCENE_TEXELS_WIDTH_LOG2 = 12u;
 const uint NODE_TEXELS = 2u;
+const uint NODE_COUNT_BITS = 3u;
 const uint TRIANGLE_TEXELS = 4u;
 const uint SHADING_TEXELS = 4u;
 const uint MATERIAL_TEXELS = 4u;
@@ -25,8 +26,9 @@ struct BvhNode {
     uint left_first; // offset 12, size 4
     vec3 aabb_max; // offset 16, size 12
     uint count; // offset 28, size 4
+    uint skip; // offset 32, size 4
 };
-const uint BVH_NODE_SIZE = 32;
+const uint BVH_NODE_SIZE = 36;
 
 struct GpuTriangle {
     vec3 v0; // offset 0, size 12

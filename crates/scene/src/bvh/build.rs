@@ -83,7 +83,7 @@ pub(super) fn build(bounds: &[Aabb]) -> Bvh {
     let mut nodes = Vec::with_capacity(2 * n.div_ceil(2));
     nodes.push(BvhNode::default());
     let mut depth = 0;
-    flatten(&root, &mut nodes, 0, 0, &mut depth);
+    flatten(&root, &mut nodes, 0, 0, 0, &mut depth);
     Bvh {
         nodes,
         order,
@@ -292,7 +292,14 @@ fn partition(
     (i, (lb, lc), (rb, rc))
 }
 
-fn flatten(node: &Node, nodes: &mut Vec<BvhNode>, slot: usize, depth: u32, max_depth: &mut u32) {
+fn flatten(
+    node: &Node,
+    nodes: &mut Vec<BvhNode>,
+    slot: usize,
+    skip: u32,
+    depth: u32,
+    max_depth: &mut u32,
+) {
     match node {
         Node::Leaf {
             bounds,
@@ -305,6 +312,7 @@ fn flatten(node: &Node, nodes: &mut Vec<BvhNode>, slot: usize, depth: u32, max_d
                 left_first: *start,
                 aabb_max: bounds.max,
                 count: *count,
+                skip,
             };
         }
         Node::Inner { bounds, children } => {
@@ -316,9 +324,11 @@ fn flatten(node: &Node, nodes: &mut Vec<BvhNode>, slot: usize, depth: u32, max_d
                 left_first: first as u32,
                 aabb_max: bounds.max,
                 count: 0,
+                skip,
             };
-            flatten(&children[0], nodes, first, depth + 1, max_depth);
-            flatten(&children[1], nodes, first + 1, depth + 1, max_depth);
+            let right = first as u32 + 1;
+            flatten(&children[0], nodes, first, right, depth + 1, max_depth);
+            flatten(&children[1], nodes, first + 1, skip, depth + 1, max_depth);
         }
     }
 }

@@ -20,8 +20,9 @@ use glam::Vec3;
 
 /// Most triangles in one leaf.
 pub const MAX_LEAF_SIZE: usize = 4;
-// bvh.glsl packs a node's triangle count into 3 bits of a traversal-stack entry.
-const _: () = assert!(MAX_LEAF_SIZE < 8);
+// bvh.glsl packs a node's triangle count into 3 bits of a traversal-stack entry, the node
+// texels into NODE_COUNT_BITS bits next to its skip link.
+const _: () = assert!(MAX_LEAF_SIZE < 8 && MAX_LEAF_SIZE < 1 << crate::gpu::NODE_COUNT_BITS);
 /// Subtrees with more triangles than this are built with `rayon::join`.
 pub const PARALLEL_THRESHOLD: usize = 4096;
 
@@ -50,7 +51,7 @@ impl Bvh {
     /// Checks the invariants the traversal relies on, against the primitive bounds in *input*
     /// order: every primitive is in exactly one leaf, leaf boxes contain their primitives,
     /// child boxes lie inside their parent, children are adjacent and after their parent,
-    /// and the depth fits the traversal stack.
+    /// the skip links thread the tree (see [`BvhNode`]) and the depth fits the traversal stack.
     pub fn validate(&self, bounds: &[Aabb]) -> Result<(), String> {
         let n = bounds.len();
         if self.order.len() != n {
@@ -74,13 +75,17 @@ impl Bvh {
             };
         }
         let mut covered = vec![0u32; n];
-        let mut stack = vec![(0usize, 0u32)];
+        // (node, depth, the skip link it must have)
+        let mut stack = vec![(0usize, 0u32, 0u32)];
         let mut visited = 0usize;
         let mut max_depth = 0;
-        while let Some((i, depth)) = stack.pop() {
+        while let Some((i, depth, skip)) = stack.pop() {
             visited += 1;
             max_depth = max_depth.max(depth);
             let node = self.nodes.get(i).ok_or(format!("node {i} out of range"))?;
+            if node.skip != skip {
+                return Err(format!("node {i} skips to {}, not {skip}", node.skip));
+            }
             let b = node_box(node);
             if node.is_leaf() {
                 let (first, count) = (node.left_first as usize, node.count as usize);
@@ -98,11 +103,11 @@ impl Bvh {
                 if l <= i || l + 1 >= self.nodes.len() {
                     return Err(format!("interior node {i} has bad children {l}, {}", l + 1));
                 }
-                for c in [l, l + 1] {
+                for (c, s) in [(l, l as u32 + 1), (l + 1, skip)] {
                     if !b.contains(&node_box(&self.nodes[c])) {
                         return Err(format!("child {c} box is not inside parent {i}"));
                     }
-                    stack.push((c, depth + 1));
+                    stack.push((c, depth + 1, s));
                 }
             }
         }

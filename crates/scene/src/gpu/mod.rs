@@ -47,15 +47,20 @@ pub const TEXTURE_WRAP_MIRROR: u32 = 2;
 pub const TEXTURE_FILTER_NEAREST: u32 = 16;
 
 gpu_struct! {
-    /// One BVH node, 32 bytes. Nodes are flattened depth-first from the root at index 0, and
+    /// One BVH node, 36 bytes. Nodes are flattened depth-first from the root at index 0, and
     /// the two children of an interior node are always adjacent.
     /// - interior (`count == 0`): children are `left_first` and `left_first + 1`;
     /// - leaf (`count > 0`): triangles `left_first .. left_first + count` of `bvh_triangles[]`.
+    ///
+    /// `skip` threads the tree for the stackless occlusion traversal: the node to visit after
+    /// this one's subtree (the right sibling of a left child, else the parent's `skip`), 0 after
+    /// the last (the root is never a skip target).
     pub struct BvhNode {
         pub aabb_min: Vec3,
         pub left_first: u32,
         pub aabb_max: Vec3,
         pub count: u32,
+        pub skip: u32,
     }
 }
 
@@ -66,6 +71,7 @@ impl BvhNode {
         left_first: 0,
         aabb_max: Vec3::splat(-f32::MAX),
         count: 0,
+        skip: 0,
     };
 
     pub fn is_leaf(&self) -> bool {
@@ -230,6 +236,7 @@ pub(crate) fn header() -> Header {
         .constant("TEXTURE_FILTER_NEAREST", TEXTURE_FILTER_NEAREST)
         .constant("SCENE_TEXELS_WIDTH_LOG2", SCENE_TEXELS_WIDTH_LOG2)
         .constant("NODE_TEXELS", NODE_TEXELS)
+        .constant("NODE_COUNT_BITS", NODE_COUNT_BITS)
         .constant("TRIANGLE_TEXELS", TRIANGLE_TEXELS)
         .constant("SHADING_TEXELS", SHADING_TEXELS)
         .constant("MATERIAL_TEXELS", MATERIAL_TEXELS)
@@ -249,7 +256,7 @@ pub(crate) fn header() -> Header {
 
 // Sizes the GLSL side relies on.
 const _: () = {
-    assert!(size_of::<BvhNode>() == 32);
+    assert!(size_of::<BvhNode>() == 36);
     assert!(size_of::<GpuTriangle>() == 36);
     assert!(size_of::<TriangleShading>() == 68);
     assert!(size_of::<GpuMaterial>() == 68);

@@ -12,7 +12,7 @@
 //!
 //! | array      | texels | layout                                                               |
 //! |------------|--------|----------------------------------------------------------------------|
-//! | BVH node   | 2      | `(min.xyz, left_first)`, `(max.xyz, count)` (= [`BvhNode`]), from texel 2 |
+//! | BVH node   | 2      | `(min.xyz, left_first)`, `(max.xyz, count | skip << 3)` ([`BvhNode`]), from texel 2 |
 //! | triangle   | 4      | `(v0.xyz, e1.x)`, `(e1.yz, e2.xy)`, `(e2.z, material, light, 0)`, `(0, 0, 0, 0)` |
 //! | shading    | 4      | `(n0.xyz, uv0.x)`, `(n1.xyz, uv0.y)`, `(n2.xyz, uv1.x)`, `(uv1.y, uv2.xy, 0)` |
 //! | material   | 4      | `(base.rgb, metallic)`, `(emissive.rgb, roughness)`, `(flags, base_tex, emissive_tex, mr_tex)`, `(specular_color.rgb, specular)` |
@@ -25,6 +25,9 @@
 //! odd index and the next) are then four texels of one image row, as are the texels of a
 //! triangle, so the shader computes one image coordinate per pair or triangle (measured 2%
 //! faster on lavapipe: llvmpipe computes and bounds-checks each coordinate separately).
+//!
+//! A node's `count` (< 8: `MAX_LEAF_SIZE` is 4) shares a word with its `skip` link (< 2^29, like
+//! `left_first`: the node image holds fewer texels).
 //!
 //! `material` and `light` of a triangle are its [`TriangleShading`] fields (the light index as
 //! the bits of the `i32`, -1 = none); the base colour's alpha is not stored (unused).
@@ -42,6 +45,8 @@ pub const SHADING_TEXELS: u32 = 4;
 pub const MATERIAL_TEXELS: u32 = 4;
 pub const LIGHT_TEXELS: u32 = 1;
 pub const TEXTURE_TEXELS: u32 = 1;
+/// Low bits of a node's second texel's `w` that hold `count` (`skip` above them).
+pub const NODE_COUNT_BITS: u32 = 3;
 /// Atlas texels (RGBA8 words) per image texel.
 pub const ATLAS_WORDS_PER_TEXEL: u32 = 4;
 
@@ -230,7 +235,12 @@ fn node_texels(n: &BvhNode) -> [Texel; 2] {
             f(n.aabb_min.z),
             n.left_first,
         ],
-        [f(n.aabb_max.x), f(n.aabb_max.y), f(n.aabb_max.z), n.count],
+        [
+            f(n.aabb_max.x),
+            f(n.aabb_max.y),
+            f(n.aabb_max.z),
+            n.count | n.skip << NODE_COUNT_BITS,
+        ],
     ]
 }
 
@@ -268,7 +278,7 @@ mod tests {
             assert!(n.count > 0 || n.left_first % 2 == 1);
             assert_eq!(Vec3::new(unf(a[0]), unf(a[1]), unf(a[2])), n.aabb_min);
             assert_eq!(Vec3::new(unf(b[0]), unf(b[1]), unf(b[2])), n.aabb_max);
-            assert_eq!((a[3], b[3]), (n.left_first, n.count));
+            assert_eq!((a[3], b[3] & 7, b[3] >> 3), (n.left_first, n.count, n.skip));
         }
         for (i, (tri, s)) in g.triangles.iter().zip(&g.shading).enumerate() {
             let k = TRIANGLE_TEXELS as usize * i;
