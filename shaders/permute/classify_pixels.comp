@@ -8,6 +8,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #include "generated/params.glsl"
+#include "sort_blocks.glsl"
 #include "generated/motion.glsl"
 #include "similar.glsl"
 
@@ -18,21 +19,17 @@ layout(set = 0, binding = 1, scalar) writeonly buffer Classes { uint classes[]; 
 
 void main() {
     uint B = p.block;
-    // Blocks start at (k * B - grid); partial blocks at the screen edges (CPU twin:
-    // permute block_counts / block_pixels).
-    uint blocks_x = (p.width + p.grid_x + B - 1u) / B;
     uint block = gl_GlobalInvocationID.x;
-    if (block >= blocks_x * ((p.height + p.grid_y + B - 1u) / B)) return;
-    ivec2 origin = ivec2(uvec2(block % blocks_x, block / blocks_x) * B) - ivec2(p.grid_x, p.grid_y);
+    if (block >= sort_block_count(p)) return;
+    ivec2 origin = sort_block_origin(p, block);
     // The block's texels are loaded once (storage-buffer loads in the inner loop would repeat
     // each load up to B*B times; on lavapipe a divergent load is itself a loop over lanes).
     uint at[64], leader[64];
     GBufferTexel g[64];
     uint n = 0u;
     for (uint k = 0u; k < B * B; ++k) {
-        ivec2 q = origin + ivec2(k % B, k / B);
-        if (q.x < 0 || q.y < 0 || q.x >= int(p.width) || q.y >= int(p.height)) continue;
-        uvec2 px = uvec2(q);
+        uvec2 px;
+        if (!sort_block_pixel(p, origin, k, px)) continue;
         at[n] = px.y * p.width + px.x;
         g[n] = gbuffer[at[n]];
         n++;

@@ -10,6 +10,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #include "generated/params.glsl"
+#include "sort_blocks.glsl"
 
 layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { SortParams p; };
@@ -27,19 +28,15 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
 
 void main() {
     uint B = p.block;
-    // Blocks start at (k * B - grid); partial blocks at the screen edges (CPU twin:
-    // permute block_counts / block_pixels).
-    uint blocks_x = (p.width + p.grid_x + B - 1u) / B;
     uint block = gl_GlobalInvocationID.x;
-    if (block >= blocks_x * ((p.height + p.grid_y + B - 1u) / B)) return;
-    ivec2 origin = ivec2(uvec2(block % blocks_x, block / blocks_x) * B) - ivec2(p.grid_x, p.grid_y);
+    if (block >= sort_block_count(p)) return;
+    ivec2 origin = sort_block_origin(p, block);
     // Visible pixels of the block in row-major order: (x, y) packed as y * B + x.
     uint cell[64], lum_key[64], mask_key[64], seed[64], cls[64];
     uint n = 0u;
     for (uint k = 0u; k < B * B; ++k) {
-        ivec2 q = origin + ivec2(k % B, k / B);
-        if (q.x < 0 || q.y < 0 || q.x >= int(p.width) || q.y >= int(p.height)) continue;
-        uvec2 px = uvec2(q);
+        uvec2 px;
+        if (!sort_block_pixel(p, origin, k, px)) continue;
         cell[n] = k;
         lum_key[n] = sort_key(estimate[px.y * p.width + px.x].w);
         uvec2 m = (px + uvec2(p.offset_x, p.offset_y)) % p.mask_size;
@@ -59,7 +56,8 @@ void main() {
         uint r = 0u;
         for (uint b = 0u; b < n; ++b) r += uint(before(cls[b], lum_key[b], b, cls[a], lum_key[a], a));
         uint k = cell[pos_of_mask_rank[r]];
-        uvec2 d = uvec2(origin + ivec2(k % B, k / B));
+        uvec2 d;
+        sort_block_pixel(p, origin, k, d);
         seeds[d.y * p.stride + d.x] = seed[a];
     }
 }
