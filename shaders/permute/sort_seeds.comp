@@ -26,6 +26,41 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
     return cb < ca || (cb == ca && (kb < ka || (kb == ka && b < a)));
 }
 
+// Thin classes (at most 2 columns or 2 rows of the block) rank against antithetic pairs
+// instead of the mask: pixels of one checkerboard colour keep their mask keys and take the
+// lower half of the class's keys; each pixel of the other colour takes the upper half, in the
+// reverse order of its partner's mask key (partner: the class's pixel to the left, else right,
+// above, below), so neighbours hold opposite errors. Mask keys are u16 ranks, below 0x10000.
+void pair_thin_classes(SortParams p, ivec2 origin, uint n, uint cell[64], uint cls[64],
+                       inout uint mask_key[64]) {
+    uint B = p.block;
+    uint at[64];  // visible pixel at each in-block index, or 64
+    for (uint k = 0u; k < 64u; ++k) at[k] = 64u;
+    for (uint a = 0u; a < n; ++a) at[cell[a]] = a;
+    uint key[64];
+    for (uint a = 0u; a < n; ++a) {
+        uvec2 c = uvec2(cell[a] % B, cell[a] / B), lo = c, hi = c;
+        for (uint b = 0u; b < n; ++b) {
+            if (cls[b] != cls[a]) continue;
+            uvec2 d = uvec2(cell[b] % B, cell[b] / B);
+            lo = min(lo, d);
+            hi = max(hi, d);
+        }
+        bool thin = hi.x - lo.x < 2u || hi.y - lo.y < 2u;
+        uint colour = (uint(origin.x + origin.y) + c.x + c.y + p.phase) & 1u;
+        uint partner = a;
+        ivec2 steps[4] = ivec2[4](ivec2(0, 1), ivec2(0, -1), ivec2(1, 0), ivec2(-1, 0));
+        for (uint i = 0u; i < 4u; ++i) {  // the last match wins: left has priority
+            ivec2 q = ivec2(c) + steps[i];
+            if (q.x < 0 || q.y < 0 || q.x >= int(B) || q.y >= int(B)) continue;
+            uint b = at[uint(q.y) * B + uint(q.x)];
+            if (b < 64u && cls[b] == cls[a]) partner = b;
+        }
+        key[a] = !thin || colour == 0u ? mask_key[a] : 0x1FFFFu - mask_key[partner];
+    }
+    for (uint a = 0u; a < n; ++a) mask_key[a] = key[a];
+}
+
 void main() {
     uint B = p.block;
     uint block = gl_GlobalInvocationID.x;
@@ -45,6 +80,7 @@ void main() {
         cls[n] = classes[px.y * p.width + px.x];
         n++;
     }
+    if (p.pairs != 0u) pair_thin_classes(p, origin, n, cell, cls, mask_key);
     // pos_of_mask_rank[r] = the visible pixel holding the r-th smallest mask value.
     uint pos_of_mask_rank[64];
     for (uint a = 0u; a < n; ++a) {

@@ -5,7 +5,7 @@ use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 use blueshift_permute::{
-    PermutePasses, Reprojection, Screen, classify_pixels_cpu, is_permutation_of,
+    PermutePasses, Reprojection, Screen, SortParams, classify_pixels_cpu, is_permutation_of,
     reproject_motion_cpu, reproject_seeds_cpu, sort_seeds_cpu,
 };
 use blueshift_render::{
@@ -76,9 +76,16 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
         let init: Vec<u32> = (0..sc.seed_count() as u32)
             .map(|i| i.wrapping_mul(2654435761))
             .collect();
-        // The paper's fixed grid and the moving grid's offsets (sort-grid-*).
-        for grid in [(0, 0), (block / 2, block / 2), (block - 1, 1)] {
-            let p = sc.sort_params_on_grid(block, (5, 11), grid).unwrap();
+        // The paper's fixed grid and the moving grid's offsets, with the moving grid's
+        // thin-class pairs in both phases (sort-grid-*).
+        let grids = [(0, 0), (block / 2, block / 2), (block - 1, 1)];
+        let pairs = [(0, 0), (1, 0), (1, 1)];
+        for (grid, (pairs, phase)) in grids.into_iter().flat_map(|g| pairs.map(|q| (g, q))) {
+            let p = SortParams {
+                pairs,
+                phase,
+                ..sc.sort_params_on_grid(block, (5, 11), grid).unwrap()
+            };
             let gb = Buffer::from_slice(gpu.dev(), "motion.gbuffer", &g).unwrap();
             let classes = gpu.output::<u32>("motion.classes", (w * h) as usize);
             let est_b = Buffer::from_slice(gpu.dev(), "motion.estimate", &est).unwrap();
@@ -107,10 +114,16 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             );
             let mut cpu = init.clone();
             sort_seeds_cpu(&p, &lum, &mask, &cpu_classes, &mut cpu);
+            if pairs == 1 {
+                let mut plain = init.clone();
+                let p0 = SortParams { pairs: 0, ..p };
+                sort_seeds_cpu(&p0, &lum, &mask, &cpu_classes, &mut plain);
+                assert_ne!(cpu, plain, "no thin class {w}x{h} B={block} grid {grid:?}");
+            }
             assert_eq!(
                 seeds.read::<u32>().unwrap(),
                 cpu,
-                "sort {w}x{h} B={block} grid {grid:?}"
+                "sort {w}x{h} B={block} grid {grid:?} pairs {pairs} phase {phase}"
             );
             // Within every block, each class holds the same set of seeds as before.
             let key = |s: &[u32], x: u32, y: u32| {

@@ -3,7 +3,8 @@
 use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_permute::{
-    PermutePasses, Screen, is_permutation_of, mask_offset, retarget_seeds_cpu, sort_seeds_cpu,
+    PermutePasses, Screen, SortParams, is_permutation_of, mask_offset, retarget_seeds_cpu,
+    sort_seeds_cpu,
 };
 
 /// A random tile permutation with displacements <= r: disjoint random swaps within radius.
@@ -47,6 +48,19 @@ fn grid_of(frame: u64, block: u32) -> (u32, u32) {
     }
 }
 
+/// Sorting parameters of `frame`: the block grid of `grid_of`, and the thin-class pairs of the
+/// moving grid (sort-grid-*) on every other frame, in both phases (here the only thin classes
+/// are the partial blocks at the screen edges).
+fn sort_params_of(sc: &Screen, block: u32, frame: u64) -> SortParams {
+    let off = mask_offset(frame, (12, 9), sc.tile);
+    SortParams {
+        pairs: (frame % 2) as u32,
+        phase: (frame / 2 % 2) as u32,
+        ..sc.sort_params_on_grid(block, off, grid_of(frame, block))
+            .unwrap()
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 fn gpu_frame(
     gpu: &mut Gpu,
@@ -60,9 +74,7 @@ fn gpu_frame(
     seeds: [&Buffer; 2],
 ) {
     let off = mask_offset(frame, (12, 9), sc.tile);
-    let sp = sc
-        .sort_params_on_grid(block, off, grid_of(frame, block))
-        .unwrap();
+    let sp = sort_params_of(sc, block, frame);
     let est = Buffer::from_slice(gpu.dev(), "permute.estimate", &estimate(lum)).unwrap();
     let zeros = vec![0u32; lum.len()];
     let classes = Buffer::from_slice(gpu.dev(), "permute.classes", &zeros).unwrap();
@@ -127,8 +139,7 @@ fn sort_and_retarget_match_cpu_and_stay_permutations() {
             );
             let off = mask_offset(f, (12, 9), n);
             sort_seeds_cpu(
-                &sc.sort_params_on_grid(block, off, grid_of(f, block))
-                    .unwrap(),
+                &sort_params_of(&sc, block, f),
                 &lum,
                 &mask_data,
                 &vec![0; (w * h) as usize],

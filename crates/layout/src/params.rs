@@ -21,6 +21,13 @@ gpu_struct! {
         /// between frames lets seeds cross last frame's block borders without retargeting.
         pub grid_x: u32,
         pub grid_y: u32,
+        /// 1: classes at most 2 pixels wide or tall in the block rank against antithetic pairs
+        /// on a checkerboard instead of the mask (whose restriction to a thin strip is not
+        /// blue); 0: the paper's ranking everywhere.
+        pub pairs: u32,
+        /// Checkerboard phase (0 or 1) of the pairs: alternated per frame so that no pixel
+        /// always takes the lower half of its class's keys.
+        pub phase: u32,
     }
 }
 

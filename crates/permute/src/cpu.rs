@@ -53,6 +53,11 @@ pub fn sort_seeds_cpu(
                 )
             })
             .collect();
+        let mask_keys = if p.pairs != 0 {
+            pair_thin_classes(p, &px, mask_keys)
+        } else {
+            mask_keys
+        };
         let lum_rank = ranks(&lum_keys);
         let mask_rank = ranks(&mask_keys);
         let mut pos_of_mask_rank = vec![0usize; px.len()];
@@ -68,6 +73,49 @@ pub fn sort_seeds_cpu(
             seeds[(dy * p.stride + dx) as usize] = old[j];
         }
     }
+}
+
+/// Twin of `pair_thin_classes` in sort_seeds.comp: in classes at most 2 pixels wide or tall
+/// in the block, one checkerboard colour keeps its mask keys (the lower half of the class's
+/// ranks) and the other takes the upper half in the reverse order of its partner's key
+/// (partner: same class, left, else right, above, below), so neighbours hold opposite errors.
+fn pair_thin_classes(
+    p: &SortParams,
+    px: &[(u32, u32, usize)],
+    keys: Vec<(u32, u32, usize)>,
+) -> Vec<(u32, u32, usize)> {
+    let b = p.block as i64;
+    let cell = |i: usize| ((i as i64 % b), (i as i64 / b));
+    let at = |x: i64, y: i64| {
+        (x >= 0 && y >= 0 && x < b && y < b)
+            .then(|| px.iter().position(|q| q.2 == (y * b + x) as usize))
+            .flatten()
+    };
+    keys.iter()
+        .zip(px)
+        .map(|(&(class, key, i), &(x, y, _))| {
+            let same: Vec<(i64, i64)> = keys
+                .iter()
+                .filter(|k| k.0 == class)
+                .map(|k| cell(k.2))
+                .collect();
+            let span = |f: fn(&(i64, i64)) -> i64| {
+                same.iter().map(f).max().unwrap_or(0) - same.iter().map(f).min().unwrap_or(0)
+            };
+            let thin = span(|c| c.0) < 2 || span(|c| c.1) < 2;
+            let colour = (x + y + p.phase) & 1;
+            if !thin || colour == 0 {
+                return (class, key, i);
+            }
+            let (cx, cy) = cell(i);
+            let partner = [(-1, 0), (1, 0), (0, -1), (0, 1)]
+                .iter()
+                .filter_map(|&(dx, dy)| at(cx + dx, cy + dy))
+                .find(|&j| keys[j].0 == class)
+                .map_or(key, |j| keys[j].1);
+            (class, 0x1_FFFF - partner, i)
+        })
+        .collect()
 }
 
 /// Retargeting pass: the seed at padded pixel x moves to x + D((x + o) mod N), toroidally
@@ -147,6 +195,45 @@ mod tests {
             &mut seeds,
         );
         assert_eq!(seeds, init);
+    }
+
+    /// With pairs, a one-pixel-wide class puts the lower half of its keys on one checkerboard
+    /// colour (which alternates with the phase) and the upper half on the other; a wide class
+    /// keeps the paper's ranking.
+    #[test]
+    fn thin_classes_rank_against_antithetic_pairs() {
+        let mut s = 7;
+        let sc = Screen::new(8, 8, 8).unwrap();
+        let mask = random_mask(8, &mut s);
+        let classes: Vec<u32> = (0..64).map(|i| u32::from(i % 8 == 3)).collect();
+        let lum: Vec<f32> = random_mask(8, &mut s)
+            .iter()
+            .map(|&v| v as f32 + 1.0)
+            .collect();
+        let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
+        for phase in 0..2 {
+            let paired = SortParams {
+                pairs: 1,
+                phase,
+                ..sc.sort_params(8, (3, 5)).unwrap()
+            };
+            let plain = SortParams { pairs: 0, ..paired };
+            let (mut a, mut b) = (init.clone(), init.clone());
+            sort_seeds_cpu(&paired, &lum, &mask, &classes, &mut a);
+            sort_seeds_cpu(&plain, &lum, &mask, &classes, &mut b);
+            // Seeds are their old pixel (stride 8): the key each pixel now holds.
+            let column: Vec<f32> = (0..8).map(|y| lum[a[y * 8 + 3] as usize]).collect();
+            let mut sorted = column.clone();
+            sorted.sort_by(f32::total_cmp);
+            for (y, v) in column.iter().enumerate() {
+                let low = (3 + y as u32 + phase) % 2 == 0;
+                assert_eq!(*v <= sorted[3], low, "phase {phase} row {y}: {column:?}");
+            }
+            for i in (0..64).filter(|i| i % 8 != 3) {
+                assert_eq!(a[i], b[i], "the wide class changed at {i}");
+            }
+            assert_ne!(a, b, "pairs changed nothing");
+        }
     }
 
     #[test]

@@ -100,6 +100,8 @@ impl Screen {
             offset_y: offset.1,
             grid_x: grid.0,
             grid_y: grid.1,
+            pairs: 0,
+            phase: 0,
         })
     }
     pub fn retarget_params(&self, offset: (u32, u32)) -> RetargetParams {

@@ -42,7 +42,7 @@ use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
     TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
-use blueshift_permute::{PermutePasses, Screen, grid_offset, mask_offset};
+use blueshift_permute::{PermutePasses, Screen, SortParams, grid_offset, mask_offset};
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use passes::ImagePasses;
 use seeds::{key_words, seeds_of};
@@ -365,7 +365,11 @@ impl Renderer {
                 let (shift, n) = (self.assets.shift, self.assets.n);
                 let next = mask_offset(self.frame + 1, shift, n);
                 let grid = grid_offset(self.frame + 1, block);
-                self.screen.sort_params_on_grid(block, next, grid)?
+                SortParams {
+                    pairs: 1,
+                    phase: ((self.frame + 1) % 2) as u32,
+                    ..self.screen.sort_params_on_grid(block, next, grid)?
+                }
             } else {
                 self.screen.sort_params(block, off)?
             };

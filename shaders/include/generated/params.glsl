@@ -13,8 +13,10 @@ struct SortParams {
     uint offset_y; // offset 24, size 4
     uint grid_x; // offset 28, size 4
     uint grid_y; // offset 32, size 4
+    uint pairs; // offset 36, size 4
+    uint phase; // offset 40, size 4
 };
-const uint SORT_PARAMS_SIZE = 36;
+const uint SORT_PARAMS_SIZE = 44;
 
 struct RetargetParams {
     uint padded_width; // offset 0, size 4
