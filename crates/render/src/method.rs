@@ -33,7 +33,9 @@ pub enum Method {
     SortRetargetDemod,
     /// Ours: no retargeting; each frame sorts GRID_BLOCK-sized blocks against the next
     /// frame's mask on a block grid that moves by half a block every other frame, so seeds
-    /// cross block borders but never move more than GRID_BLOCK - 1 pixels per frame.
+    /// cross block borders but never move more than GRID_BLOCK - 1 pixels per frame. Classes
+    /// at most 2 px wide or tall in a block rank against antithetic pairs on a checkerboard
+    /// (`SortParams::pairs`), since the mask restricted to a thin strip is not blue.
     SortGrid,
     /// Ours: `SortGrid` ranking only within surfaces (G-buffer classes): seeds never leave
     /// their surface.
