@@ -31,22 +31,29 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
 // lower half of the class's keys; each pixel of the other colour takes the upper half, in the
 // reverse order of its partner's mask key (partner: the class's pixel to the left, else right,
 // above, below), so neighbours hold opposite errors. Mask keys are u16 ranks, below 0x10000.
+// Classes are in-block indices (classify_pixels' leaders, or 0), so spans index by class.
 void pair_thin_classes(SortParams p, ivec2 origin, uint n, uint cell[64], uint cls[64],
                        inout uint mask_key[64]) {
     uint B = p.block;
-    uint at[64];  // visible pixel at each in-block index, or 64
-    for (uint k = 0u; k < 64u; ++k) at[k] = 64u;
-    for (uint a = 0u; a < n; ++a) at[cell[a]] = a;
+    uint at[64];                // visible pixel at each in-block index, or 64
+    uvec2 lo[64], hi[64];       // bounding box of each class in block coordinates
+    for (uint k = 0u; k < 64u; ++k) {
+        at[k] = 64u;
+        lo[k] = uvec2(B);
+        hi[k] = uvec2(0u);
+    }
+    for (uint a = 0u; a < n; ++a) {
+        at[cell[a]] = a;
+        uint c = min(cls[a], 63u);
+        uvec2 d = uvec2(cell[a] % B, cell[a] / B);
+        lo[c] = min(lo[c], d);
+        hi[c] = max(hi[c], d);
+    }
     uint key[64];
     for (uint a = 0u; a < n; ++a) {
-        uvec2 c = uvec2(cell[a] % B, cell[a] / B), lo = c, hi = c;
-        for (uint b = 0u; b < n; ++b) {
-            if (cls[b] != cls[a]) continue;
-            uvec2 d = uvec2(cell[b] % B, cell[b] / B);
-            lo = min(lo, d);
-            hi = max(hi, d);
-        }
-        bool thin = hi.x - lo.x < 2u || hi.y - lo.y < 2u;
+        uint k = min(cls[a], 63u);
+        bool thin = hi[k].x - lo[k].x < 2u || hi[k].y - lo[k].y < 2u;
+        uvec2 c = uvec2(cell[a] % B, cell[a] / B);
         uint colour = (uint(origin.x + origin.y) + c.x + c.y + p.phase) & 1u;
         uint partner = a;
         ivec2 steps[4] = ivec2[4](ivec2(0, 1), ivec2(0, -1), ivec2(1, 0), ivec2(-1, 0));

@@ -23,6 +23,8 @@ fn ranks(keys: &[(u32, u32, usize)]) -> Vec<usize> {
 /// mask value; partial blocks at the screen edge sort their visible pixels among themselves.
 /// `classes` (per visible pixel, e.g. from classify_pixels; all equal for the paper's method):
 /// pixels and mask values rank on (class, key, index), so seeds only move within a class.
+/// With `p.pairs`, classes should be in-block indices (below 64, as classify_pixels writes):
+/// the thin-class test merges classes from 63 up.
 pub fn sort_seeds_cpu(
     p: &SortParams,
     lum: &[f32],
@@ -94,9 +96,10 @@ fn pair_thin_classes(
     keys.iter()
         .zip(px)
         .map(|(&(class, key, i), &(x, y, _))| {
+            // Classes are in-block indices; the shader keys its span arrays by min(class, 63).
             let same: Vec<(i64, i64)> = keys
                 .iter()
-                .filter(|k| k.0 == class)
+                .filter(|k| k.0.min(63) == class.min(63))
                 .map(|k| cell(k.2))
                 .collect();
             let span = |f: fn(&(i64, i64)) -> i64| {
