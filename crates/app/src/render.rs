@@ -49,7 +49,8 @@ pub struct RenderArgs {
     /// white, white-fixed, sobol, hbo19, mask-r2, stbn, sort, sort-retarget.
     #[arg(long, default_value = "sort-retarget")]
     pub method: String,
-    /// static, pan:PX (image-space pan, px/frame), orbit:DEG (deg/frame), or a keyframe JSON file.
+    /// static, pan:PX (image-space pan, px/frame), orbit:DEG (deg/frame), swing:DEG (an orbit
+    /// turning back after 12 degrees), or a keyframe JSON file.
     #[arg(long, default_value = "static")]
     pub camera_path: String,
     /// Experiment: hash the frame into fixed seeds (breaks temporal correlation).

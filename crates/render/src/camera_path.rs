@@ -23,6 +23,11 @@ pub enum CameraPath {
     Orbit {
         degrees_per_frame: f32,
     },
+    /// An orbit that turns back after [`SWING_SPAN`] degrees, like a pan: the camera keeps
+    /// circling its subject at full speed without turning it out of view.
+    Swing {
+        degrees_per_frame: f32,
+    },
     Keyframes(Vec<Keyframe>),
 }
 
@@ -43,8 +48,19 @@ struct PathFile {
 /// motion, short enough that the view stays on the scene (the sensor is the frame plus this).
 pub const PAN_SPAN: f32 = 64.0;
 
+/// How far (degrees) a swing turns before it turns back. An orbit of 1 degree/frame shows the
+/// Cornell box's open front at 24-47 degrees in frames 24-47, mostly its dark outside.
+pub const SWING_SPAN: f32 = 12.0;
+
+/// A triangle wave of slope `speed` per frame between 0 and `span` (sign of `speed`).
+fn back_and_forth(speed: f32, frame: u32, span: f32) -> f32 {
+    let d = (speed * frame as f32).abs() % (2.0 * span);
+    let x = if d <= span { d } else { 2.0 * span - d };
+    x.copysign(speed)
+}
+
 impl CameraPath {
-    /// Parses `static`, `pan[:PX]`, `orbit[:DEG]` or a path to a keyframe file.
+    /// Parses `static`, `pan[:PX]`, `orbit[:DEG]`, `swing[:DEG]` or a path to a keyframe file.
     pub fn parse(spec: &str) -> Result<CameraPath, String> {
         let (name, arg) = spec
             .split_once(':')
@@ -67,6 +83,9 @@ impl CameraPath {
             "orbit" => Ok(CameraPath::Orbit {
                 degrees_per_frame: number(0.5)?,
             }),
+            "swing" => Ok(CameraPath::Swing {
+                degrees_per_frame: number(1.0)?,
+            }),
             _ => Self::load(Path::new(spec)),
         }
     }
@@ -75,7 +94,7 @@ impl CameraPath {
     pub fn load(path: &Path) -> Result<CameraPath, String> {
         let text = std::fs::read_to_string(path).map_err(|e| {
             format!(
-                "camera path '{}': {e} (presets: static, pan:PX, orbit:DEG)",
+                "camera path '{}': {e} (presets: static, pan:PX, orbit:DEG, swing:DEG)",
                 path.display()
             )
         })?;
@@ -116,6 +135,7 @@ impl CameraPath {
             CameraPath::Static => "static".into(),
             CameraPath::Pan { px_per_frame } => format!("pan:{px_per_frame}"),
             CameraPath::Orbit { degrees_per_frame } => format!("orbit:{degrees_per_frame}"),
+            CameraPath::Swing { degrees_per_frame } => format!("swing:{degrees_per_frame}"),
             CameraPath::Keyframes(_) => "keyframes".into(),
         }
     }
@@ -147,10 +167,8 @@ impl CameraPath {
     pub fn view_offset(&self, frame: u32) -> (f32, f32) {
         match self {
             CameraPath::Pan { px_per_frame } => {
-                // Back and forth over PAN_SPAN px (a triangle wave), at |px_per_frame| px/frame.
-                let d = (px_per_frame * frame as f32).abs() % (2.0 * PAN_SPAN);
-                let x = if d <= PAN_SPAN { d } else { 2.0 * PAN_SPAN - d };
-                (x.copysign(*px_per_frame), 0.0)
+                // Back and forth over PAN_SPAN px, at |px_per_frame| px/frame.
+                (back_and_forth(*px_per_frame, frame, PAN_SPAN), 0.0)
             }
             _ => (0.0, 0.0),
         }
@@ -162,17 +180,24 @@ impl CameraPath {
             CameraPath::Static => *base,
             CameraPath::Pan { .. } => *base,
             CameraPath::Orbit { degrees_per_frame } => {
-                let angle = (degrees_per_frame * frame as f32).to_radians();
-                let offset = base.position - base.target;
-                let axis = base.up.normalize_or_zero();
-                let rotated = glam::Quat::from_axis_angle(axis, angle) * offset;
-                Camera {
-                    position: base.target + rotated,
-                    ..*base
-                }
+                orbit(base, degrees_per_frame * frame as f32)
+            }
+            CameraPath::Swing { degrees_per_frame } => {
+                orbit(base, back_and_forth(*degrees_per_frame, frame, SWING_SPAN))
             }
             CameraPath::Keyframes(k) => interpolate(k, frame),
         }
+    }
+}
+
+/// `base` turned by `degrees` around its target (about its up axis).
+fn orbit(base: &Camera, degrees: f32) -> Camera {
+    let offset = base.position - base.target;
+    let axis = base.up.normalize_or_zero();
+    let rotated = glam::Quat::from_axis_angle(axis, degrees.to_radians()) * offset;
+    Camera {
+        position: base.target + rotated,
+        ..*base
     }
 }
 
@@ -223,6 +248,12 @@ mod tests {
             CameraPath::Pan { px_per_frame: 8.0 }
         );
         assert!(CameraPath::parse("pan:abc").is_err());
+        assert_eq!(
+            CameraPath::parse("swing:2").unwrap(),
+            CameraPath::Swing {
+                degrees_per_frame: 2.0
+            }
+        );
         assert!(
             CameraPath::parse("/nonexistent/path.json")
                 .unwrap_err()
@@ -279,6 +310,33 @@ mod tests {
             CameraPath::Static.view_window(5, 32, 16),
             ((32, 16), (0.0, 0.0))
         );
+    }
+
+    /// A swing follows the orbit up to SWING_SPAN degrees, then turns back to where it began.
+    #[test]
+    fn swings_turn_back_at_their_span() {
+        let (swing, orbit) = (
+            CameraPath::Swing {
+                degrees_per_frame: 1.0,
+            },
+            CameraPath::Orbit {
+                degrees_per_frame: 1.0,
+            },
+        );
+        let b = base();
+        let span = SWING_SPAN as u32;
+        for f in 0..=span {
+            assert_eq!(swing.camera(&b, f), orbit.camera(&b, f), "frame {f}");
+        }
+        for f in 0..=span {
+            let (a, c) = (swing.camera(&b, span + f), orbit.camera(&b, span - f));
+            assert!(
+                (a.position - c.position).length() < 1e-5,
+                "frame {}",
+                span + f
+            );
+        }
+        assert!((swing.camera(&b, 2 * span).position - b.position).length() < 1e-5);
     }
 
     #[test]

@@ -29,7 +29,7 @@ pub struct EvalArgs {
     /// Comma-separated samples per pixel per frame.
     #[arg(long, default_value = "1")]
     pub spp: String,
-    /// Comma-separated camera paths: static, pan:PX, orbit:DEG, or keyframe files.
+    /// Comma-separated camera paths: static, pan:PX, orbit:DEG, swing:DEG, or keyframe files.
     #[arg(long, default_value = "static")]
     pub camera: String,
     /// Comma-separated bounce counts (1 = direct light only).
