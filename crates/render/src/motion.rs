@@ -113,7 +113,8 @@ pub fn motion_params(prev: &TraceParams, screen: &Screen) -> MotionParams {
 impl Renderer {
     /// Runs before the frame's main submission for the methods that need a G-buffer: writes
     /// it, and for reprojecting methods moves the seeds along the motion since the previous
-    /// frame (own submission: the mean motion read back sets this frame's mask offset).
+    /// frame (own submission: for the retargeting methods, the mean motion read back sets this
+    /// frame's mask offset).
     /// Returns the mask offset this frame sorts against and the passes' times.
     pub(crate) fn prepare_frame(
         &mut self,
@@ -144,6 +145,13 @@ impl Renderer {
         }
         let times = self.rec.submit_and_wait()?;
         st.prev = Some(*tp);
+        if reproject {
+            self.current = 1 - self.current;
+        }
+        if m.shifts_grid() {
+            // The moving grid sorts against the next frame's own mask offset: nothing to follow.
+            return Ok((mask_offset(self.frame, shift, n), times));
+        }
         let offset = match st.prev_offset {
             None => (0, 0),
             Some(o) => {
@@ -156,9 +164,6 @@ impl Renderer {
                 follow_offset(o, shift, motion, n)
             }
         };
-        if reproject {
-            self.current = 1 - self.current;
-        }
         st.prev_offset = Some(offset);
         Ok((offset, times))
     }
