@@ -26,7 +26,8 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
     return cb < ca || (cb == ca && (kb < ka || (kb == ka && b < a)));
 }
 
-// Thin classes (at most 2 columns or 2 rows of the block) rank against antithetic pairs
+// Thin classes (at most 2 columns or 2 rows of the block; with pairs == 2 every class) rank
+// against antithetic pairs
 // instead of the mask: pixels of one checkerboard colour keep their mask keys and take the
 // lower half of the class's keys; each pixel of the other colour takes the upper half, in the
 // reverse order of its partner's mask key (partner: the class's pixel to the left, else right,
@@ -52,7 +53,7 @@ void pair_thin_classes(SortParams p, ivec2 origin, uint n, uint cell[64], uint c
     uint key[64];
     for (uint a = 0u; a < n; ++a) {
         uint k = min(cls[a], 63u);
-        bool thin = hi[k].x - lo[k].x < 2u || hi[k].y - lo[k].y < 2u;
+        bool thin = p.pairs == 2u || hi[k].x - lo[k].x < 2u || hi[k].y - lo[k].y < 2u;
         uvec2 c = uvec2(cell[a] % B, cell[a] / B);
         uint colour = (uint(origin.x + origin.y) + c.x + c.y + p.phase) & 1u;
         uint partner = a;

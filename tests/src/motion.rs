@@ -79,7 +79,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
         // The paper's fixed grid and the moving grid's offsets, with the moving grid's
         // thin-class pairs in both phases (sort-grid-*).
         let grids = [(0, 0), (block / 2, block / 2), (block - 1, 1)];
-        let pairs = [(0, 0), (1, 0), (1, 1)];
+        let pairs = [(0, 0), (1, 0), (1, 1), (2, 1)];
         for (grid, (pairs, phase)) in grids.into_iter().flat_map(|g| pairs.map(|q| (g, q))) {
             let p = SortParams {
                 pairs,
@@ -114,7 +114,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             );
             let mut cpu = init.clone();
             sort_seeds_cpu(&p, &lum, &mask, &cpu_classes, &mut cpu);
-            if pairs == 1 {
+            if pairs != 0 {
                 let mut plain = init.clone();
                 let p0 = SortParams { pairs: 0, ..p };
                 sort_seeds_cpu(&p0, &lum, &mask, &cpu_classes, &mut plain);

@@ -49,12 +49,12 @@ fn grid_of(frame: u64, block: u32) -> (u32, u32) {
 }
 
 /// Sorting parameters of `frame`: the block grid of `grid_of`, and the thin-class pairs of the
-/// moving grid (sort-grid-*) on every other frame, in both phases (here the only thin classes
-/// are the partial blocks at the screen edges).
+/// moving grid (sort-grid-*): none, thin classes (here only partial blocks at the screen
+/// edges) or every class, in both phases.
 fn sort_params_of(sc: &Screen, block: u32, frame: u64) -> SortParams {
     let off = mask_offset(frame, (12, 9), sc.tile);
     SortParams {
-        pairs: (frame % 2) as u32,
+        pairs: (frame % 3) as u32,
         phase: (frame / 2 % 2) as u32,
         ..sc.sort_params_on_grid(block, off, grid_of(frame, block))
             .unwrap()

@@ -23,7 +23,7 @@ gpu_struct! {
         pub grid_y: u32,
         /// 1: classes at most 2 pixels wide or tall in the block rank against antithetic pairs
         /// on a checkerboard instead of the mask (whose restriction to a thin strip is not
-        /// blue); 0: the paper's ranking everywhere.
+        /// blue); 2: every class does; 0: the paper's ranking everywhere.
         pub pairs: u32,
         /// Checkerboard phase (0 or 1) of the pairs: alternated per frame so that no pixel
         /// always takes the lower half of its class's keys.

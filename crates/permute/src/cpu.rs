@@ -78,7 +78,7 @@ pub fn sort_seeds_cpu(
 }
 
 /// Twin of `pair_thin_classes` in sort_seeds.comp: in classes at most 2 pixels wide or tall
-/// in the block, one checkerboard colour keeps its mask keys (the lower half of the class's
+/// in the block (every class with `pairs == 2`), one checkerboard colour keeps its mask keys (the lower half of the class's
 /// ranks) and the other takes the upper half in the reverse order of its partner's key
 /// (partner: same class, left, else right, above, below), so neighbours hold opposite errors.
 fn pair_thin_classes(
@@ -105,7 +105,7 @@ fn pair_thin_classes(
             let span = |f: fn(&(i64, i64)) -> i64| {
                 same.iter().map(f).max().unwrap_or(0) - same.iter().map(f).min().unwrap_or(0)
             };
-            let thin = span(|c| c.0) < 2 || span(|c| c.1) < 2;
+            let thin = p.pairs == 2 || span(|c| c.0) < 2 || span(|c| c.1) < 2;
             let colour = (x + y + p.phase) & 1;
             if !thin || colour == 0 {
                 return (class, key, i);
@@ -236,6 +236,27 @@ mod tests {
                 assert_eq!(a[i], b[i], "the wide class changed at {i}");
             }
             assert_ne!(a, b, "pairs changed nothing");
+            // pairs == 2: the wide class too splits into halves by checkerboard colour.
+            let mut c = init.clone();
+            sort_seeds_cpu(
+                &SortParams { pairs: 2, ..paired },
+                &lum,
+                &mask,
+                &classes,
+                &mut c,
+            );
+            let wide: Vec<usize> = (0..64).filter(|i| i % 8 != 3).collect();
+            let mut values: Vec<f32> = wide.iter().map(|&i| lum[c[i] as usize]).collect();
+            values.sort_by(f32::total_cmp);
+            for &i in &wide {
+                let low = (i as u32 % 8 + i as u32 / 8 + phase) % 2 == 0;
+                let v = lum[c[i] as usize];
+                assert_eq!(
+                    v <= values[values.len() / 2 - 1],
+                    low,
+                    "phase {phase} pixel {i}"
+                );
+            }
         }
     }
 

@@ -366,7 +366,7 @@ impl Renderer {
                 let next = mask_offset(self.frame + 1, shift, n);
                 let grid = grid_offset(self.frame + 1, block);
                 SortParams {
-                    pairs: 1,
+                    pairs: m.pairs(),
                     phase: ((self.frame + 1) % 2) as u32,
                     ..self.screen.sort_params_on_grid(block, next, grid)?
                 }

@@ -42,6 +42,9 @@ pub enum Method {
     SortGridEdges,
     /// Ours: `SortGridEdges` with reprojection and the demodulated key.
     SortGridPlus,
+    /// Ours: `SortGridPlus` with antithetic pairs in every class, not only thin ones: lower P1,
+    /// but the error becomes a checkerboard with mask-ordered magnitudes, not blue noise.
+    SortGridPairs,
 }
 
 /// Block edge of the moving-grid methods, whatever the paper's block size: without
@@ -50,7 +53,7 @@ pub enum Method {
 pub const GRID_BLOCK: u32 = 8;
 
 impl Method {
-    pub const ALL: [Method; 15] = [
+    pub const ALL: [Method; 16] = [
         Method::White,
         Method::WhiteFixed,
         Method::Sobol,
@@ -66,6 +69,7 @@ impl Method {
         Method::SortGrid,
         Method::SortGridEdges,
         Method::SortGridPlus,
+        Method::SortGridPairs,
     ];
 
     pub fn name(self) -> &'static str {
@@ -85,6 +89,7 @@ impl Method {
             Method::SortGrid => "sort-grid",
             Method::SortGridEdges => "sort-grid-edges",
             Method::SortGridPlus => "sort-grid-plus",
+            Method::SortGridPairs => "sort-grid-pairs",
         }
     }
 
@@ -116,7 +121,7 @@ impl Method {
     pub fn shifts_grid(self) -> bool {
         matches!(
             self,
-            Method::SortGrid | Method::SortGridEdges | Method::SortGridPlus
+            Method::SortGrid | Method::SortGridEdges | Method::SortGridPlus | Method::SortGridPairs
         )
     }
 
@@ -150,7 +155,10 @@ impl Method {
     pub fn reprojects(self) -> bool {
         matches!(
             self,
-            Method::SortRetargetReproject | Method::SortRetargetPlus | Method::SortGridPlus
+            Method::SortRetargetReproject
+                | Method::SortRetargetPlus
+                | Method::SortGridPlus
+                | Method::SortGridPairs
         )
     }
 
@@ -158,7 +166,10 @@ impl Method {
     pub fn demodulates(self) -> bool {
         matches!(
             self,
-            Method::SortRetargetDemod | Method::SortRetargetPlus | Method::SortGridPlus
+            Method::SortRetargetDemod
+                | Method::SortRetargetPlus
+                | Method::SortGridPlus
+                | Method::SortGridPairs
         )
     }
 
@@ -170,7 +181,18 @@ impl Method {
                 | Method::SortRetargetPlus
                 | Method::SortGridEdges
                 | Method::SortGridPlus
+                | Method::SortGridPairs
         )
+    }
+
+    /// Which classes rank against antithetic pairs (`SortParams::pairs`): thin ones for the
+    /// moving grid, every one for `SortGridPairs`, none otherwise.
+    pub fn pairs(self) -> u32 {
+        match self {
+            Method::SortGridPairs => 2,
+            m if m.shifts_grid() => 1,
+            _ => 0,
+        }
     }
 }
 
