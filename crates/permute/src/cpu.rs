@@ -78,42 +78,44 @@ pub fn sort_seeds_cpu(
 }
 
 /// Twin of `pair_thin_classes` in sort_seeds.comp: in classes at most 2 pixels wide or tall
-/// in the block (every class with `pairs == 2`), one checkerboard colour keeps its mask keys (the lower half of the class's
-/// ranks) and the other takes the upper half in the reverse order of its partner's key
-/// (partner: same class, left, else right, above, below), so neighbours hold opposite errors.
+/// in the block (every class with `pairs == 2`), one checkerboard colour keeps its mask keys
+/// (the lower half of the class's ranks) and the other takes the upper half in the reverse
+/// order of its partner's key (partner: same class, left, else right, above, below), so
+/// neighbours hold opposite errors.
 fn pair_thin_classes(
     p: &SortParams,
     px: &[(u32, u32, usize)],
     keys: Vec<(u32, u32, usize)>,
 ) -> Vec<(u32, u32, usize)> {
-    let b = p.block as i64;
-    let cell = |i: usize| ((i as i64 % b), (i as i64 / b));
-    let at = |x: i64, y: i64| {
-        (x >= 0 && y >= 0 && x < b && y < b)
-            .then(|| px.iter().position(|q| q.2 == (y * b + x) as usize))
-            .flatten()
-    };
+    let b = p.block as usize;
+    // Bounding box per class (classes are in-block indices: keyed by min(class, 63) like the
+    // shader), and the visible pixel at each in-block index.
+    let mut boxes = [(usize::MAX, usize::MAX, 0, 0); 64];
+    let mut at = [None; 64];
+    for (j, &(class, _, i)) in keys.iter().enumerate() {
+        let bx = &mut boxes[class.min(63) as usize];
+        *bx = (
+            bx.0.min(i % b),
+            bx.1.min(i / b),
+            bx.2.max(i % b),
+            bx.3.max(i / b),
+        );
+        at[i] = Some(j);
+    }
     keys.iter()
         .zip(px)
         .map(|(&(class, key, i), &(x, y, _))| {
-            // Classes are in-block indices; the shader keys its span arrays by min(class, 63).
-            let same: Vec<(i64, i64)> = keys
-                .iter()
-                .filter(|k| k.0.min(63) == class.min(63))
-                .map(|k| cell(k.2))
-                .collect();
-            let span = |f: fn(&(i64, i64)) -> i64| {
-                same.iter().map(f).max().unwrap_or(0) - same.iter().map(f).min().unwrap_or(0)
-            };
-            let thin = p.pairs == 2 || span(|c| c.0) < 2 || span(|c| c.1) < 2;
-            let colour = (x + y + p.phase) & 1;
-            if !thin || colour == 0 {
+            let (x0, y0, x1, y1) = boxes[class.min(63) as usize];
+            let thin = p.pairs == 2 || x1 - x0 < 2 || y1 - y0 < 2;
+            if !thin || (x + y + p.phase) & 1 == 0 {
                 return (class, key, i);
             }
-            let (cx, cy) = cell(i);
+            let (cx, cy) = ((i % b) as i64, (i / b) as i64);
             let partner = [(-1, 0), (1, 0), (0, -1), (0, 1)]
                 .iter()
-                .filter_map(|&(dx, dy)| at(cx + dx, cy + dy))
+                .map(|&(dx, dy)| (cx + dx, cy + dy))
+                .filter(|&(qx, qy)| qx >= 0 && qy >= 0 && qx < b as i64 && qy < b as i64)
+                .filter_map(|(qx, qy)| at[qy as usize * b + qx as usize])
                 .find(|&j| keys[j].0 == class)
                 .map_or(key, |j| keys[j].1);
             (class, 0x1_FFFF - partner, i)

@@ -32,7 +32,7 @@ pub enum Method {
     /// base colour), so textures do not scramble the ranks.
     SortRetargetDemod,
     /// Ours: no retargeting; each frame sorts GRID_BLOCK-sized blocks against the next
-    /// frame's mask on a block grid that moves by half a block every other frame, so seeds
+    /// frame's mask on a block grid that moves every frame (`permute::grid_offset`), so seeds
     /// cross block borders but never move more than GRID_BLOCK - 1 pixels per frame. Classes
     /// at most 2 px wide or tall in a block rank against antithetic pairs on a checkerboard
     /// (`SortParams::pairs`), since the mask restricted to a thin strip is not blue.
