@@ -3,10 +3,10 @@
 //! Same closest-hit traversal (fixed stack, near child first, far child pushed with its entry
 //! distance; the GLSL keeps the current node's `left_first`/`count` in registers and pushes
 //! those, where this code keeps node indices: the same nodes in the same order), same
-//! stackless occlusion traversal (skip links), same ray/box slab test, same Möller–Trumbore operation order (no fused multiply-adds on
-//! either side: the GLSL marks these computations `precise`). Closest hit is the smallest `t`
-//! in `[tmin, tmax]`, ties broken by the smaller triangle index, so the BVH and the
-//! brute-force loop agree exactly.
+//! stackless occlusion traversal (skip links), same ray/box slab test, same Möller–Trumbore
+//! operation order (no fused multiply-adds on either side: the GLSL marks these computations
+//! `precise`). Closest hit is the smallest `t` in `[tmin, tmax]`, ties broken by the smaller
+//! triangle index, so the BVH and the brute-force loop agree exactly.
 
 use crate::geometry::{cross, dot};
 use crate::gpu::{BVH_STACK_SIZE, BvhNode, GpuTriangle, HIT_MISS, Hit, Ray};
