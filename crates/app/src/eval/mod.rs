@@ -126,6 +126,8 @@ pub struct Run {
     pub config: Config,
     pub method: Method,
     pub metrics: RunMetrics,
+    /// P1 (all pixels) of each sequence, for the spread of the ratio across sequences.
+    pub p1_per_sequence: Vec<f64>,
     pub flip: f64,
     pub pass_ms: BTreeMap<String, f64>,
     pub seconds: f64,
@@ -250,6 +252,7 @@ fn run_method(
     let (w, h) = (args.width, args.height);
     let window = (args.frames / 2) as usize;
     let mut merged: Option<RunMetrics> = None;
+    let mut p1_per_sequence = Vec::new();
     let mut times: BTreeMap<String, Vec<f64>> = BTreeMap::new();
     let (mut last_frame, mut last_error, mut flip) = (Vec::new(), None, 0.0);
     for seq in 0..args.sequences {
@@ -300,6 +303,7 @@ fn run_method(
         }
         last_error = acc.last_error.clone();
         let m = acc.finish()?;
+        p1_per_sequence.push(m.raw.p1.all);
         merged = Some(match merged {
             None => m,
             Some(prev) => metrics::average(prev, m, seq as f64),
@@ -316,6 +320,7 @@ fn run_method(
         config: config.clone(),
         method,
         metrics: merged.context("no sequence ran")?,
+        p1_per_sequence,
         flip,
         pass_ms,
         seconds: t0.elapsed().as_secs_f64(),

@@ -41,6 +41,21 @@ pub fn ratios(
     }
 }
 
+/// Standard error of the P1 ratio to white across sequences: the ratios of sequence i of both
+/// runs (same camera and references), their sample standard deviation over sqrt(n). NaN for
+/// fewer than 2 sequences. Tells whether two methods (or a method and a bar) differ by more
+/// than the choice of initial seeds.
+pub fn p1_ratio_stderr(m: &[f64], w: &[f64]) -> f64 {
+    let r: Vec<f64> = m.iter().zip(w).map(|(a, b)| a / b).collect();
+    let n = r.len() as f64;
+    if r.len() < 2 {
+        return f64::NAN;
+    }
+    let mean = r.iter().sum::<f64>() / n;
+    let var = r.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (var / n).sqrt()
+}
+
 fn white_of<'a>(runs: &'a [Run], c: &Config) -> Option<&'a Run> {
     runs.iter()
         .find(|r| r.method == Method::White && &r.config == c)
@@ -90,6 +105,9 @@ pub fn write(
             "raw": r.metrics.raw,
             "ema": r.metrics.ema,
             "ratios_vs_white": ratio,
+            "p1_ratio_stderr": white
+                .map_or(f64::NAN, |w| p1_ratio_stderr(&r.p1_per_sequence, &w.p1_per_sequence)),
+            "p1_per_sequence": r.p1_per_sequence,
             "flip": num(r.flip),
             "pass_ms_median": r.pass_ms,
             "p1_per_frame": r.metrics.p1_per_frame,
@@ -161,7 +179,8 @@ fn markdown(
         md,
         "Ratios are against `white` (fresh seeds every frame) of the same configuration; below 1 is better. \
         P1/P2: RMSE of the error blurred with sigma 1/2 px; LF: share of error power below 0.125 cycles/px \
-        (64x64 Hann tiles); smooth/edge: pixels by reference gradient; EMA: exponential moving average, alpha 0.1.\n"
+        (64x64 Hann tiles); smooth/edge: pixels by reference gradient; EMA: exponential moving average, alpha 0.1. \
+        With 2 or more sequences, P1 shows ± the standard error of the per-sequence ratio.\n"
     )?;
     for c in configs {
         let cr: Vec<&Run> = runs.iter().filter(|r| &r.config == c).collect();
@@ -181,6 +200,12 @@ fn markdown(
                 &white.metrics.raw,
                 &white.metrics.ema,
             );
+            let se = p1_ratio_stderr(&r.p1_per_sequence, &white.p1_per_sequence);
+            let p1 = if se.is_finite() && r.method != Method::White {
+                format!("{:.3} ± {se:.3}", q.p1)
+            } else {
+                format!("{:.3}", q.p1)
+            };
             let trace = r.pass_ms.get("trace").copied().unwrap_or(0.0);
             // Every pass a method adds to the path tracer (gbuffer, classify, reproject for
             // our extensions).
@@ -202,10 +227,10 @@ fn markdown(
             };
             writeln!(
                 md,
-                "| {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {} |",
+                "| {} | {:.3} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {} |",
                 r.method.name(),
                 q.rmse,
-                q.p1,
+                p1,
                 q.p2,
                 q.lf,
                 q.p1_smooth,
@@ -267,4 +292,19 @@ fn markdown(
         }
     }
     Ok(md)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::p1_ratio_stderr;
+
+    #[test]
+    fn stderr_of_per_sequence_ratios() {
+        // Ratios 0.8 and 0.9: sample sd 0.0707, over sqrt(2) = 0.05.
+        let se = p1_ratio_stderr(&[0.8, 1.8], &[1.0, 2.0]);
+        assert!((se - 0.05).abs() < 1e-12, "{se}");
+        // Equal ratios have no spread; one sequence has none defined.
+        assert_eq!(p1_ratio_stderr(&[1.0, 2.0, 3.0], &[2.0, 4.0, 6.0]), 0.0);
+        assert!(p1_ratio_stderr(&[1.0], &[2.0]).is_nan());
+    }
 }
