@@ -29,7 +29,8 @@ pub fn reproject_motion_cpu(
             let nx = dot3(d, p.cam_right) / (dot3(p.cam_right, p.cam_right) * z);
             let ny = -dot3(d, p.cam_up) / (dot3(p.cam_up, p.cam_up) * z);
             let c = (Vec2::new(nx, ny) + 1.0) * 0.5 * p.view_size - p.view_offset;
-            let f = c.floor();
+            // 1/256 px off the pixel borders that whole- and half-pixel motions hit exactly.
+            let f = (c + 0.003_906_25).floor();
             let inside = z > 0.0
                 && f.x >= 0.0
                 && f.y >= 0.0
@@ -162,6 +163,56 @@ mod tests {
         // q0 wins 12; holes q1 q2 q3 get the unclaimed 10 11 13 in order.
         assert_eq!(r.seeds, vec![12, 10, 11, 13]);
         assert_eq!(r.motion, [-2, 0, 1]);
+    }
+
+    /// A wall seen head-on through a camera whose sensor moved by half a pixel: every pixel
+    /// centre projects onto a pixel border of the previous frame, give or take float noise.
+    /// All pixels must still take the same neighbour, or seeds collide and fresh seeds appear.
+    #[test]
+    fn a_half_pixel_shift_moves_all_pixels_alike() {
+        let (w, h) = (37u32, 5u32);
+        let right = glam::Vec3::X * 0.731;
+        let up = glam::Vec3::Y * 0.731 * h as f32 / w as f32;
+        let wall = |x: u32, y: u32| {
+            let ndc = Vec2::new(
+                (x as f32 + 0.5) / w as f32 * 2.0 - 1.0,
+                1.0 - (y as f32 + 0.5) / h as f32 * 2.0,
+            );
+            let dir = (glam::Vec3::NEG_Z + ndc.x * right + ndc.y * up).normalize();
+            let depth = 2.3 / -dir.z;
+            GBufferTexel {
+                position: dir * depth,
+                material: 1,
+                normal: glam::Vec3::Z,
+                depth,
+            }
+        };
+        let g: Vec<GBufferTexel> = (0..w * h).map(|q| wall(q % w, q / w)).collect();
+        let p = MotionParams {
+            cam_right: right,
+            cam_up: up,
+            view_offset: Vec2::new(0.5, 0.0),
+            ..params(w, h, w, h)
+        };
+        let src = reproject_motion_cpu(&p, &g, &g);
+        let mut shifts = std::collections::BTreeSet::new();
+        for q in 0..w * h {
+            let s = src[q as usize];
+            if s != REPROJECT_NONE {
+                assert_eq!(s / w, q / w, "pixel {q} left its row");
+                shifts.insert(s as i64 - q as i64);
+            }
+        }
+        assert_eq!(
+            shifts.len(),
+            1,
+            "pixels took different neighbours: {shifts:?}"
+        );
+        let hits = src.iter().filter(|&&s| s != REPROJECT_NONE).count();
+        assert!(
+            hits >= ((w - 1) * h) as usize,
+            "only {hits} pixels found a source"
+        );
     }
 
     #[test]
