@@ -29,7 +29,7 @@ pub fn reproject_motion_cpu(
             let nx = dot3(d, p.cam_right) / (dot3(p.cam_right, p.cam_right) * z);
             let ny = -dot3(d, p.cam_up) / (dot3(p.cam_up, p.cam_up) * z);
             let c = (Vec2::new(nx, ny) + 1.0) * 0.5 * p.view_size - p.view_offset;
-            // 1/256 px off the pixel borders that whole- and half-pixel motions hit exactly.
+            // 1/256 px off the pixel borders that half-pixel motions hit exactly (see the shader).
             let f = (c + 0.003_906_25).floor();
             let inside = z > 0.0
                 && f.x >= 0.0
