@@ -126,8 +126,9 @@ pub struct Run {
     pub config: Config,
     pub method: Method,
     pub metrics: RunMetrics,
-    /// P1 (all pixels) of each sequence, for the spread of the ratio across sequences.
-    pub p1_per_sequence: Vec<f64>,
+    /// P1 (all / smooth / edge pixels) of each sequence, for the spread of the ratios across
+    /// sequences.
+    pub p1_per_sequence: Vec<metrics::Split>,
     pub flip: f64,
     pub pass_ms: BTreeMap<String, f64>,
     pub seconds: f64,
@@ -303,7 +304,7 @@ fn run_method(
         }
         last_error = acc.last_error.clone();
         let m = acc.finish()?;
-        p1_per_sequence.push(m.raw.p1.all);
+        p1_per_sequence.push(m.raw.p1);
         merged = Some(match merged {
             None => m,
             Some(prev) => metrics::average(prev, m, seq as f64),

@@ -1,5 +1,5 @@
 //! report.json (every number, machine-readable) and report.md (tables + figures).
-use super::metrics::StreamMetrics;
+use super::metrics::{Split, StreamMetrics};
 use super::{Config, EvalArgs, Run, figures};
 use crate::output::write_atomic;
 use anyhow::Result;
@@ -56,6 +56,22 @@ pub fn p1_ratio_stderr(m: &[f64], w: &[f64]) -> f64 {
     (var / n).sqrt()
 }
 
+/// `p1_ratio_stderr` of one pixel set (`all` or `edge`) of two runs.
+fn stderr_of(r: &Run, w: &Run, pick: fn(&Split) -> f64) -> f64 {
+    let m: Vec<f64> = r.p1_per_sequence.iter().map(pick).collect();
+    let w: Vec<f64> = w.p1_per_sequence.iter().map(pick).collect();
+    p1_ratio_stderr(&m, &w)
+}
+
+/// `value ± se` when the spread is known (2 or more sequences), else the value alone.
+fn with_se(value: f64, se: f64) -> String {
+    if se.is_finite() {
+        format!("{value:.3} ± {se:.3}")
+    } else {
+        format!("{value:.3}")
+    }
+}
+
 fn white_of<'a>(runs: &'a [Run], c: &Config) -> Option<&'a Run> {
     runs.iter()
         .find(|r| r.method == Method::White && &r.config == c)
@@ -105,8 +121,8 @@ pub fn write(
             "raw": r.metrics.raw,
             "ema": r.metrics.ema,
             "ratios_vs_white": ratio,
-            "p1_ratio_stderr": white
-                .map_or(f64::NAN, |w| p1_ratio_stderr(&r.p1_per_sequence, &w.p1_per_sequence)),
+            "p1_ratio_stderr": white.map_or(f64::NAN, |w| stderr_of(r, w, |s| s.all)),
+            "p1_edge_ratio_stderr": white.map_or(f64::NAN, |w| stderr_of(r, w, |s| s.edge)),
             "p1_per_sequence": r.p1_per_sequence,
             "flip": num(r.flip),
             "pass_ms_median": r.pass_ms,
@@ -180,7 +196,7 @@ fn markdown(
         "Ratios are against `white` (fresh seeds every frame) of the same configuration; below 1 is better. \
         P1/P2: RMSE of the error blurred with sigma 1/2 px; LF: share of error power below 0.125 cycles/px \
         (64x64 Hann tiles); smooth/edge: pixels by reference gradient; EMA: exponential moving average, alpha 0.1. \
-        With 2 or more sequences, P1 shows ± the standard error of the per-sequence ratio.\n"
+        With 2 or more sequences, P1 and P1 edge show ± the standard error of the per-sequence ratio.\n"
     )?;
     for c in configs {
         let cr: Vec<&Run> = runs.iter().filter(|r| &r.config == c).collect();
@@ -200,11 +216,13 @@ fn markdown(
                 &white.metrics.raw,
                 &white.metrics.ema,
             );
-            let se = p1_ratio_stderr(&r.p1_per_sequence, &white.p1_per_sequence);
-            let p1 = if se.is_finite() && r.method != Method::White {
-                format!("{:.3} ± {se:.3}", q.p1)
+            let (p1, p1_edge) = if r.method == Method::White {
+                (with_se(q.p1, f64::NAN), with_se(q.p1_edge, f64::NAN))
             } else {
-                format!("{:.3}", q.p1)
+                (
+                    with_se(q.p1, stderr_of(r, white, |s| s.all)),
+                    with_se(q.p1_edge, stderr_of(r, white, |s| s.edge)),
+                )
             };
             let trace = r.pass_ms.get("trace").copied().unwrap_or(0.0);
             // Every pass a method adds to the path tracer (gbuffer, classify, reproject for
@@ -227,14 +245,14 @@ fn markdown(
             };
             writeln!(
                 md,
-                "| {} | {:.3} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {} |",
+                "| {} | {:.3} | {} | {:.3} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.4} | {} |",
                 r.method.name(),
                 q.rmse,
                 p1,
                 q.p2,
                 q.lf,
                 q.p1_smooth,
-                q.p1_edge,
+                p1_edge,
                 q.ema_p1,
                 q.ema_lf,
                 r.flip,
