@@ -30,10 +30,7 @@ void main() {
     precise float nx = dot3(d, p.cam_right) / (dot3(p.cam_right, p.cam_right) * z);
     precise float ny = -dot3(d, p.cam_up) / (dot3(p.cam_up, p.cam_up) * z);
     precise vec2 c = (vec2(nx, ny) + 1.0) * 0.5 * p.view_size - p.view_offset;
-    // A motion of an odd number of half pixels puts pixel centres exactly on pixel borders,
-    // where float noise would pick the source pixel at random (collisions, holes): moved
-    // 1/256 px off the borders, every pixel picks the same side.
-    precise vec2 biased = c + 0.00390625;
+    precise vec2 biased = c + REPROJECT_TIE_BIAS;  // consistent side at pixel borders
     vec2 f = floor(biased);
     bool inside = z > 0.0 && f.x >= 0.0 && f.y >= 0.0 && f.x < float(p.width) && f.y < float(p.height);
     uvec2 s = inside ? uvec2(f) : uvec2(0u);  // (f may be NaN or huge when not inside)

@@ -27,8 +27,8 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
 }
 
 // Thin classes (at most 2 columns or 2 rows of the block; with pairs == 2 every class) rank
-// against antithetic pairs instead of the mask: pixels of one checkerboard colour keep their mask keys and take the
-// lower half of the class's keys; each pixel of the other colour takes the upper half, in the
+// against antithetic pairs instead of the mask: pixels of one checkerboard colour keep their
+// mask keys and take the lower half of the class's keys; each pixel of the other colour takes the upper half, in the
 // reverse order of its partner's mask key (partner: the class's pixel to the left, else right,
 // above, below), so neighbours hold opposite errors. Mask keys are u16 ranks, below 0x10000.
 // Classes are in-block indices (classify_pixels' leaders, or 0), so spans index by class.

@@ -51,8 +51,7 @@ fn grid_of(frame: u64, block: u32) -> (u32, u32) {
 /// Sorting parameters of `frame`: the block grid of `grid_of`, and the thin-class pairs of the
 /// moving grid (sort-grid-*): none, thin classes (here only partial blocks at the screen
 /// edges) or every class, in both phases.
-fn sort_params_of(sc: &Screen, block: u32, frame: u64) -> SortParams {
-    let off = mask_offset(frame, (12, 9), sc.tile);
+fn sort_params_of(sc: &Screen, block: u32, frame: u64, off: (u32, u32)) -> SortParams {
     SortParams {
         pairs: (frame % 3) as u32,
         phase: (frame / 2 % 2) as u32,
@@ -74,7 +73,7 @@ fn gpu_frame(
     seeds: [&Buffer; 2],
 ) {
     let off = mask_offset(frame, (12, 9), sc.tile);
-    let sp = sort_params_of(sc, block, frame);
+    let sp = sort_params_of(sc, block, frame, off);
     let est = Buffer::from_slice(gpu.dev(), "permute.estimate", &estimate(lum)).unwrap();
     let zeros = vec![0u32; lum.len()];
     let classes = Buffer::from_slice(gpu.dev(), "permute.classes", &zeros).unwrap();
@@ -139,7 +138,7 @@ fn sort_and_retarget_match_cpu_and_stay_permutations() {
             );
             let off = mask_offset(f, (12, 9), n);
             sort_seeds_cpu(
-                &sort_params_of(&sc, block, f),
+                &sort_params_of(&sc, block, f, off),
                 &lum,
                 &mask_data,
                 &vec![0; (w * h) as usize],

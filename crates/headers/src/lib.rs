@@ -36,6 +36,7 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .push::<motion::GBufferTexel>()
                 .push::<motion::MotionParams>()
                 .constant("REPROJECT_NONE", motion::REPROJECT_NONE)
+                .constant_f32("REPROJECT_TIE_BIAS", motion::REPROJECT_TIE_BIAS)
                 .constant_i32("REPROJECT_MAX_MOTION", motion::REPROJECT_MAX_MOTION)
                 .constant_f32("SIMILAR_MIN_COS", motion::SIMILAR_MIN_COS)
                 .constant_f32("SIMILAR_PLANE_DISTANCE", motion::SIMILAR_PLANE_DISTANCE)

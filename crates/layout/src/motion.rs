@@ -40,6 +40,11 @@ gpu_struct! {
 
 /// "No pixel" in the reprojection buffers.
 pub const REPROJECT_NONE: u32 = 0xffff_ffff;
+/// Added to a pixel's projected position before it is rounded down to its source pixel: a
+/// motion of an odd number of half pixels puts pixel centres exactly on pixel borders, where
+/// float noise would pick either side (collisions, fresh seeds); 1/256 px off the borders,
+/// every pixel picks the same side.
+pub const REPROJECT_TIE_BIAS: f32 = 0.003_906_25;
 /// Largest per-pixel motion (pixels per axis) counted in the mean motion that moves the
 /// mask with the image; larger moves are clamped (keeps the integer sums from overflowing).
 pub const REPROJECT_MAX_MOTION: i32 = 255;

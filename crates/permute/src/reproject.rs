@@ -10,7 +10,9 @@
 //!    the same length (each claimed pixel has exactly one winner), so the result is a
 //!    permutation. Disoccluded pixels thus get fresh seeds, deterministically.
 use crate::similar::dot3;
-use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_MAX_MOTION, REPROJECT_NONE};
+use blueshift_layout::motion::{
+    GBufferTexel, MotionParams, REPROJECT_MAX_MOTION, REPROJECT_NONE, REPROJECT_TIE_BIAS,
+};
 use glam::Vec2;
 
 /// Step 1 (`reproject_motion`): source pixel (padded index) per padded pixel, or NONE.
@@ -29,8 +31,7 @@ pub fn reproject_motion_cpu(
             let nx = dot3(d, p.cam_right) / (dot3(p.cam_right, p.cam_right) * z);
             let ny = -dot3(d, p.cam_up) / (dot3(p.cam_up, p.cam_up) * z);
             let c = (Vec2::new(nx, ny) + 1.0) * 0.5 * p.view_size - p.view_offset;
-            // 1/256 px off the pixel borders that half-pixel motions hit exactly (see the shader).
-            let f = (c + 0.003_906_25).floor();
+            let f = (c + REPROJECT_TIE_BIAS).floor();
             let inside = z > 0.0
                 && f.x >= 0.0
                 && f.y >= 0.0

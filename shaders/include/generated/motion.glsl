@@ -26,6 +26,7 @@ struct MotionParams {
 const uint MOTION_PARAMS_SIZE = 80;
 
 const uint REPROJECT_NONE = 4294967295u;
+const float REPROJECT_TIE_BIAS = 0.00390625;
 const int REPROJECT_MAX_MOTION = 255;
 const float SIMILAR_MIN_COS = 0.9;
 const float SIMILAR_PLANE_DISTANCE = 0.02;
