@@ -18,8 +18,15 @@ layout(set = 0, binding = 0, scalar) readonly buffer Estimate { vec4 estimate[];
 layout(set = 0, binding = 1, scalar) readonly buffer Mask { uint mask[]; };          // N*N ranks
 layout(set = 0, binding = 2, scalar) buffer Seeds { uint seeds[]; };                 // padded
 layout(set = 0, binding = 3, scalar) readonly buffer Classes { uint classes[]; };     // W*H
+// History means (history_key; zeros: the raw key), NaN where a pixel has no history yet: W*H.
+layout(set = 0, binding = 4, scalar) readonly buffer History { float hist_mean[]; };
 
-uint sort_key(float l) { return l > 0.0 ? floatBitsToUint(l) : 0u; }
+// Orders like the float (CPU twin: sort_key): positives over 0x80000000, negatives inverted,
+// 0, -0 and NaN at 0x80000000.
+uint sort_key(float v) {
+    uint b = floatBitsToUint(v);
+    return v > 0.0 ? 0x80000000u | b : (v < 0.0 ? ~b : 0x80000000u);
+}
 
 // (class, key, index) of b orders before that of a.
 bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
@@ -75,17 +82,33 @@ void main() {
     ivec2 origin = sort_block_origin(p, block);
     // Visible pixels of the block in row-major order: (x, y) packed as y * B + x.
     uint cell[64], lum_key[64], mask_key[64], seed[64], cls[64];
+    float val[64], hm[64], csum[64], ccount[64];
+    for (uint k = 0u; k < 64u; ++k) {
+        csum[k] = 0.0;
+        ccount[k] = 0.0;
+    }
     uint n = 0u;
     for (uint k = 0u; k < B * B; ++k) {
         uvec2 px;
         if (!sort_block_pixel(p, origin, k, px)) continue;
         cell[n] = k;
-        lum_key[n] = sort_key(estimate[px.y * p.width + px.x].w);
+        val[n] = estimate[px.y * p.width + px.x].w;
+        hm[n] = hist_mean[px.y * p.width + px.x];
         uvec2 m = (px + uvec2(p.offset_x, p.offset_y)) % p.mask_size;
         mask_key[n] = mask[m.y * p.mask_size + m.x];
         seed[n] = seeds[px.y * p.stride + px.x];
         cls[n] = classes[px.y * p.width + px.x];
         n++;
+    }
+    for (uint a = 0u; a < n; ++a) {
+        uint c = min(cls[a], 63u);
+        csum[c] += val[a];
+        ccount[c] += 1.0;
+    }
+    for (uint a = 0u; a < n; ++a) {
+        uint c = min(cls[a], 63u);
+        float ref = isnan(hm[a]) ? csum[c] * (1.0 / ccount[c]) : hm[a];
+        lum_key[a] = sort_key(val[a] - ref);
     }
     if (p.pairs != 0u) pair_thin_classes(p, origin, n, cell, cls, mask_key);
     // pos_of_mask_rank[r] = the visible pixel holding the r-th smallest mask value.

@@ -21,6 +21,8 @@ mod hbo19;
 #[cfg(test)]
 mod headers;
 #[cfg(test)]
+mod history;
+#[cfg(test)]
 mod motion;
 #[cfg(test)]
 mod permute;

@@ -5,8 +5,8 @@ use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 use blueshift_permute::{
-    PermutePasses, Reprojection, Screen, SortParams, classify_pixels_cpu, is_permutation_of,
-    reproject_motion_cpu, reproject_seeds_cpu, sort_seeds_cpu,
+    PermutePasses, Reprojection, Screen, SortInput, SortParams, classify_pixels_cpu,
+    is_permutation_of, reproject_motion_cpu, reproject_seeds_cpu, sort_seeds_cpu,
 };
 use blueshift_render::{
     Method, MethodAssets, RenderConfig, Renderer, default_assets_dir, gbuffer_cpu,
@@ -73,6 +73,14 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             .map(|_| (rng.next_u32() % 40) as f32 * 0.5)
             .collect();
         let est: Vec<[f32; 4]> = lum.iter().map(|&l| [l, l, l, l]).collect();
+        // History means (history keys): NaN (rank against the class mean) for a quarter of
+        // the pixels, the others near the keys.
+        let history: Vec<f32> = (0..w * h)
+            .map(|_| match rng.next_u32() % 4 {
+                0 => f32::NAN,
+                r => (rng.next_u32() % 40) as f32 * 0.5 + r as f32 * 0.1,
+            })
+            .collect();
         let init: Vec<u32> = (0..sc.seed_count() as u32)
             .map(|i| i.wrapping_mul(2654435761))
             .collect();
@@ -91,13 +99,24 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             let est_b = Buffer::from_slice(gpu.dev(), "motion.estimate", &est).unwrap();
             let mask_b = Buffer::from_slice(gpu.dev(), "motion.mask", &mask).unwrap();
             let seeds = Buffer::from_slice(gpu.dev(), "motion.seeds", &init).unwrap();
+            let history_b = Buffer::from_slice(gpu.dev(), "motion.history", &history).unwrap();
             let rec = gpu.rec.as_mut().unwrap();
             rec.begin().unwrap();
             rec.begin_pass("classify").unwrap();
             passes.classify_pixels(rec, &p, &gb, &classes).unwrap();
             rec.begin_pass("sort").unwrap();
             passes
-                .sort_seeds(rec, &p, &est_b, &mask_b, &classes, &seeds)
+                .sort_seeds(
+                    rec,
+                    &p,
+                    &SortInput {
+                        estimate: &est_b,
+                        mask: &mask_b,
+                        classes: &classes,
+                        history: &history_b,
+                    },
+                    &seeds,
+                )
                 .unwrap();
             rec.submit_and_wait().unwrap();
 
@@ -113,11 +132,11 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
                 "the test G-buffer must have edges inside blocks"
             );
             let mut cpu = init.clone();
-            sort_seeds_cpu(&p, &lum, &mask, &cpu_classes, &mut cpu);
+            sort_seeds_cpu(&p, &lum, &mask, &cpu_classes, &history, &mut cpu);
             if pairs != 0 {
                 let mut plain = init.clone();
                 let p0 = SortParams { pairs: 0, ..p };
-                sort_seeds_cpu(&p0, &lum, &mask, &cpu_classes, &mut plain);
+                sort_seeds_cpu(&p0, &lum, &mask, &cpu_classes, &history, &mut plain);
                 assert_ne!(cpu, plain, "no thin class {w}x{h} B={block} grid {grid:?}");
             }
             assert_eq!(

@@ -3,8 +3,8 @@
 use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_permute::{
-    PermutePasses, Screen, SortParams, is_permutation_of, mask_offset, retarget_seeds_cpu,
-    sort_seeds_cpu,
+    PermutePasses, Screen, SortInput, SortParams, is_permutation_of, mask_offset,
+    retarget_seeds_cpu, sort_seeds_cpu,
 };
 
 /// A random tile permutation with displacements <= r: disjoint random swaps within radius.
@@ -81,7 +81,17 @@ fn gpu_frame(
     rec.begin().unwrap();
     rec.begin_pass("permute.sort_seeds").unwrap();
     passes
-        .sort_seeds(rec, &sp, &est, mask, &classes, seeds[0])
+        .sort_seeds(
+            rec,
+            &sp,
+            &SortInput {
+                estimate: &est,
+                mask,
+                classes: &classes,
+                history: &classes,
+            },
+            seeds[0],
+        )
         .unwrap();
     rec.begin_pass("permute.retarget_seeds").unwrap();
     passes
@@ -142,6 +152,7 @@ fn sort_and_retarget_match_cpu_and_stay_permutations() {
                 &lum,
                 &mask_data,
                 &vec![0; (w * h) as usize],
+                &vec![0.0; (w * h) as usize],
                 &mut cpu,
             );
             assert_eq!(

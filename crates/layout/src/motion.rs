@@ -38,6 +38,31 @@ gpu_struct! {
     }
 }
 
+gpu_struct! {
+    /// Push constants of `permute/history_key`: each pixel's history mean (its surface's mean
+    /// sorting key over earlier frames, fetched through the reprojection's source map).
+    pub struct HistoryParams {
+        /// Visible screen.
+        pub width: u32,
+        pub height: u32,
+        /// Padded width: the row stride of the reprojection's `src` and of the histories.
+        pub padded_width: u32,
+        /// 1 when `src` maps this frame's pixels to the previous frame's; 0 on the first frame
+        /// of a sequence (every history restarts, every pixel ranks its raw key).
+        pub has_history: u32,
+        /// A history of fewer frames is too noisy to rank against: the pixel gets NaN (the
+        /// sorting pass then uses its class's mean key in the block).
+        pub min_frames: u32,
+        /// The mean weighs the newest key by 1 / min(frames, max_frames).
+        pub max_frames: u32,
+    }
+}
+
+/// `HistoryParams::min_frames` and `max_frames` of `sort-grid-history` (README, "History
+/// keys": 1-4 frames of history made pans worse; 16-64 frames differ within noise).
+pub const HISTORY_MIN_FRAMES: u32 = 8;
+pub const HISTORY_MAX_FRAMES: u32 = 64;
+
 /// "No pixel" in the reprojection buffers.
 pub const REPROJECT_NONE: u32 = 0xffff_ffff;
 /// Added to a pixel's projected position before it is rounded down to its source pixel: a

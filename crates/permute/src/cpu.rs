@@ -2,11 +2,19 @@
 //! same arithmetic (integer keys only), so the GPU must agree exactly.
 use crate::{RetargetParams, SortParams};
 
-/// Sort key of a luminance: its bit pattern, with NaN, negatives and -0 mapped to +0.
-/// For non-negative floats the bit pattern orders like the value, so ranking is exact.
+/// Sort key of a float (a luminance, or a signed error for history keys): a u32 that orders
+/// like the value, so ranking is exact. Positive floats set the top bit over their bit
+/// pattern; negative ones invert theirs (larger magnitude, smaller key); 0, -0 and NaN all
+/// map to 0x8000_0000, between the two.
 #[inline]
-pub fn sort_key(lum: f32) -> u32 {
-    if lum > 0.0 { lum.to_bits() } else { 0 }
+pub fn sort_key(v: f32) -> u32 {
+    if v > 0.0 {
+        0x8000_0000 | v.to_bits()
+    } else if v < 0.0 {
+        !v.to_bits()
+    } else {
+        0x8000_0000
+    }
 }
 
 /// Ranks (class, key, in-block index) triples: element i gets the number of elements before it.
@@ -25,11 +33,14 @@ fn ranks(keys: &[(u32, u32, usize)]) -> Vec<usize> {
 /// pixels and mask values rank on (class, key, index), so seeds only move within a class.
 /// With `p.pairs`, classes should be in-block indices (below 64, as classify_pixels writes):
 /// the thin-class test merges classes from 63 up.
+/// `history` (per visible pixel; zeros: the raw key) is subtracted from the key before
+/// ranking; NaN stands for the mean key of the pixel's class in the block (history_key_cpu).
 pub fn sort_seeds_cpu(
     p: &SortParams,
     lum: &[f32],
     mask: &[u32],
     classes: &[u32],
+    history: &[f32],
     seeds: &mut [u32],
 ) {
     let n = p.mask_size;
@@ -37,11 +48,25 @@ pub fn sort_seeds_cpu(
     for block in 0..bx * by {
         // Visible pixels of the block in row-major in-block order.
         let px = crate::block_pixels(p, block);
+        let at = |x: u32, y: u32| (y * p.width + x) as usize;
+        // Sum and count of the keys per class (classes from 63 up merged, as on the GPU).
+        let (mut sum, mut count) = ([0f32; 64], [0f32; 64]);
+        for &(x, y, _) in &px {
+            let c = classes[at(x, y)].min(63) as usize;
+            sum[c] += lum[at(x, y)];
+            count[c] += 1.0;
+        }
         let lum_keys: Vec<_> = px
             .iter()
             .map(|&(x, y, i)| {
-                let at = (y * p.width + x) as usize;
-                (classes[at], sort_key(lum[at]), i)
+                let (v, h) = (lum[at(x, y)], history[at(x, y)]);
+                let c = classes[at(x, y)].min(63) as usize;
+                let reference = if h.is_nan() {
+                    sum[c] * (1.0 / count[c])
+                } else {
+                    h
+                };
+                (classes[at(x, y)], sort_key(v - reference), i)
             })
             .collect();
         let mask_keys: Vec<_> = px
@@ -174,7 +199,9 @@ mod tests {
                         .map(|_| (lcg(&mut s) % 100) as f32 / 7.0)
                         .collect();
                     let p = sc.sort_params(b, mask_offset(f, (12, 9), 16)).unwrap();
-                    sort_seeds_cpu(&p, &lum, &mask, &vec![0; (w * h) as usize], &mut seeds);
+                    let none = vec![0.0; (w * h) as usize];
+                    let classes = vec![0; (w * h) as usize];
+                    sort_seeds_cpu(&p, &lum, &mask, &classes, &none, &mut seeds);
                     assert!(is_permutation_of(&seeds, &init));
                 }
             }
@@ -197,6 +224,7 @@ mod tests {
             &lum,
             &mask,
             &[0; 32 * 32],
+            &[0.0; 32 * 32],
             &mut seeds,
         );
         assert_eq!(seeds, init);
@@ -224,8 +252,9 @@ mod tests {
             };
             let plain = SortParams { pairs: 0, ..paired };
             let (mut a, mut b) = (init.clone(), init.clone());
-            sort_seeds_cpu(&paired, &lum, &mask, &classes, &mut a);
-            sort_seeds_cpu(&plain, &lum, &mask, &classes, &mut b);
+            let none = [0.0; 64];
+            sort_seeds_cpu(&paired, &lum, &mask, &classes, &none, &mut a);
+            sort_seeds_cpu(&plain, &lum, &mask, &classes, &none, &mut b);
             // Seeds are their old pixel (stride 8): the key each pixel now holds.
             let column: Vec<f32> = (0..8).map(|y| lum[a[y * 8 + 3] as usize]).collect();
             let mut sorted = column.clone();
@@ -245,6 +274,7 @@ mod tests {
                 &lum,
                 &mask,
                 &classes,
+                &none,
                 &mut c,
             );
             let wide: Vec<usize> = (0..64).filter(|i| i % 8 != 3).collect();

@@ -3,6 +3,20 @@
 use crate::{PermuteError, Result, RetargetParams, SortParams};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder};
 
+/// What the sorting pass ranks.
+#[derive(Debug, Clone, Copy)]
+pub struct SortInput<'a> {
+    /// vec4 (rgb, sorting key) per visible pixel.
+    pub estimate: &'a Buffer,
+    /// The N*N mask ranks.
+    pub mask: &'a Buffer,
+    /// One u32 per visible pixel (zeros: the paper's method; else classify_pixels).
+    pub classes: &'a Buffer,
+    /// One f32 per visible pixel subtracted from the key (zeros: the raw key; else
+    /// history_key's means, NaN for the class mean in the block).
+    pub history: &'a Buffer,
+}
+
 /// Pipelines of both permutation passes.
 pub struct PermutePasses {
     classify: ComputePipeline,
@@ -35,6 +49,7 @@ impl PermutePasses {
                 Binding::storage(1, "mask"),
                 Binding::storage(2, "seeds"),
                 Binding::storage(3, "classes"),
+                Binding::storage(4, "history"),
             ],
             std::mem::size_of::<SortParams>(),
         )?;
@@ -64,20 +79,23 @@ impl PermutePasses {
         })
     }
 
-    /// Records the sorting pass (in place on `seeds`). `estimate` holds vec4 (rgb, luminance);
-    /// `classes` one u32 per visible pixel (zeros: the paper's method; else classify_pixels).
+    /// Records the sorting pass (in place on `seeds`).
     pub fn sort_seeds(
         &self,
         rec: &mut Recorder,
         p: &SortParams,
-        estimate: &Buffer,
-        mask: &Buffer,
-        classes: &Buffer,
+        input: &SortInput,
         seeds: &Buffer,
     ) -> Result<()> {
         rec.dispatch(
             &self.sort,
-            &[estimate.into(), mask.into(), seeds.into(), classes.into()],
+            &[
+                input.estimate.into(),
+                input.mask.into(),
+                seeds.into(),
+                input.classes.into(),
+                input.history.into(),
+            ],
             bytemuck::bytes_of(p),
             block_groups(p)?,
         )?;

@@ -12,6 +12,7 @@
 mod cpu;
 mod edges;
 mod gpu;
+mod history;
 mod reproject;
 mod reproject_gpu;
 mod similar;
@@ -20,7 +21,8 @@ pub use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 pub use blueshift_layout::params::{RetargetParams, SortParams};
 pub use cpu::{retarget_seeds_cpu, sort_key, sort_seeds_cpu};
 pub use edges::classify_pixels_cpu;
-pub use gpu::PermutePasses;
+pub use gpu::{PermutePasses, SortInput};
+pub use history::{HistoryKeys, history_key_cpu};
 pub use reproject::{Reprojected, mean_motion, reproject_motion_cpu, reproject_seeds_cpu};
 pub use reproject_gpu::Reprojection;
 pub use similar::similar;

@@ -42,7 +42,7 @@ use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
     TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
-use blueshift_permute::{PermutePasses, Screen, SortParams, grid_offset, mask_offset};
+use blueshift_permute::{PermutePasses, Screen, SortInput, SortParams, grid_offset, mask_offset};
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use passes::ImagePasses;
 use seeds::{key_words, seeds_of};
@@ -373,20 +373,25 @@ impl Renderer {
             } else {
                 self.screen.sort_params(block, off)?
             };
+            self.record_history_keys()?;
             self.record_classes(&tp, &sp)?;
             self.rec.begin_pass("sort")?;
             let classes = match (&self.motion, m.edge_aware()) {
                 (Some(st), true) => &st.classes,
                 _ => &self.zero_classes,
             };
-            self.permute.sort_seeds(
-                &mut self.rec,
-                &sp,
-                &self.estimate,
-                &self.mask,
+            let history = match self.motion.as_ref().and_then(|st| st.history_mean()) {
+                Some(h) if m.history_keys() => h,
+                _ => &self.zero_classes,
+            };
+            let input = SortInput {
+                estimate: &self.estimate,
+                mask: &self.mask,
                 classes,
-                &self.seeds[cur],
-            )?;
+                history,
+            };
+            self.permute
+                .sort_seeds(&mut self.rec, &sp, &input, &self.seeds[cur])?;
         }
         if m.retargets() {
             self.rec.begin_pass("retarget")?;

@@ -45,6 +45,9 @@ pub enum Method {
     /// Ours: `SortGridPlus` with antithetic pairs in every class, not only thin ones: lower P1,
     /// but the error becomes a checkerboard with mask-ordered magnitudes, not blue noise.
     SortGridPairs,
+    /// Ours: `SortGridPlus` ranking history keys (`permute/history_key`): each pixel's key
+    /// minus its surface's mean key over earlier frames, an estimate of the seed's error.
+    SortGridHistory,
 }
 
 /// Block edge of the moving-grid methods, whatever the paper's block size: without
@@ -53,7 +56,7 @@ pub enum Method {
 pub const GRID_BLOCK: u32 = 8;
 
 impl Method {
-    pub const ALL: [Method; 16] = [
+    pub const ALL: [Method; 17] = [
         Method::White,
         Method::WhiteFixed,
         Method::Sobol,
@@ -70,6 +73,7 @@ impl Method {
         Method::SortGridEdges,
         Method::SortGridPlus,
         Method::SortGridPairs,
+        Method::SortGridHistory,
     ];
 
     pub fn name(self) -> &'static str {
@@ -90,6 +94,7 @@ impl Method {
             Method::SortGridEdges => "sort-grid-edges",
             Method::SortGridPlus => "sort-grid-plus",
             Method::SortGridPairs => "sort-grid-pairs",
+            Method::SortGridHistory => "sort-grid-history",
         }
     }
 
@@ -121,7 +126,11 @@ impl Method {
     pub fn shifts_grid(self) -> bool {
         matches!(
             self,
-            Method::SortGrid | Method::SortGridEdges | Method::SortGridPlus | Method::SortGridPairs
+            Method::SortGrid
+                | Method::SortGridEdges
+                | Method::SortGridPlus
+                | Method::SortGridPairs
+                | Method::SortGridHistory
         )
     }
 
@@ -159,6 +168,7 @@ impl Method {
                 | Method::SortRetargetPlus
                 | Method::SortGridPlus
                 | Method::SortGridPairs
+                | Method::SortGridHistory
         )
     }
 
@@ -170,6 +180,7 @@ impl Method {
                 | Method::SortRetargetPlus
                 | Method::SortGridPlus
                 | Method::SortGridPairs
+                | Method::SortGridHistory
         )
     }
 
@@ -182,7 +193,13 @@ impl Method {
                 | Method::SortGridEdges
                 | Method::SortGridPlus
                 | Method::SortGridPairs
+                | Method::SortGridHistory
         )
+    }
+
+    /// Whether the sorting pass ranks history keys (`permute/history_key`).
+    pub fn history_keys(self) -> bool {
+        self == Method::SortGridHistory
     }
 
     /// Which classes rank against antithetic pairs (`SortParams::pairs`): thin ones for the

@@ -4,9 +4,13 @@
 use crate::gbuffer::GBufferPass;
 use crate::{RenderError, Renderer, Result, SceneBuffers, SceneImages};
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
-use blueshift_layout::motion::{GBufferTexel, MotionParams};
+use blueshift_layout::motion::{
+    GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HistoryParams, MotionParams,
+};
 use blueshift_layout::params::TraceParams;
-use blueshift_permute::{Reprojection, Screen, follow_offset, mask_offset, mean_motion};
+use blueshift_permute::{
+    HistoryKeys, Reprojection, Screen, follow_offset, mask_offset, mean_motion,
+};
 
 /// G-buffers (this and the previous frame), surface classes, reprojection scratch, and what
 /// the next frame needs to know about this one.
@@ -24,6 +28,10 @@ pub(crate) struct MotionState {
     prev_offset: Option<(u32, u32)>,
     /// The last reprojection's mean motion (pixels), for reports.
     pub last_motion: (i32, i32),
+    /// Whether this frame's `src` maps to the previous frame (false on a sequence's first).
+    reprojected: bool,
+    /// History keys, created when a method first needs them.
+    history: Option<HistoryKeys>,
 }
 
 impl MotionState {
@@ -43,6 +51,8 @@ impl MotionState {
             prev: None,
             prev_offset: None,
             last_motion: (0, 0),
+            reprojected: false,
+            history: None,
         })
     }
 
@@ -51,6 +61,11 @@ impl MotionState {
         self.prev = None;
         self.prev_offset = None;
         self.last_motion = (0, 0);
+    }
+
+    /// The history means the sorting pass ranks against (history-key methods).
+    pub fn history_mean(&self) -> Option<&Buffer> {
+        self.history.as_ref().map(|h| &h.mean)
     }
 
     /// The G-buffer written by the last frame.
@@ -145,6 +160,7 @@ impl Renderer {
         }
         let times = self.rec.submit_and_wait()?;
         st.prev = Some(*tp);
+        st.reprojected = reproject;
         if reproject {
             self.current = 1 - self.current;
         }
@@ -166,6 +182,36 @@ impl Renderer {
         };
         st.prev_offset = Some(offset);
         Ok((offset, times))
+    }
+
+    /// For history-key methods: records `history_key` on this frame's estimate (after the
+    /// trace pass, before sorting).
+    pub(crate) fn record_history_keys(&mut self) -> Result<()> {
+        if !self.cfg.method.history_keys() {
+            return Ok(());
+        }
+        let Some(st) = self.motion.as_mut() else {
+            return Err(RenderError::Invalid(
+                "history keys without motion state".into(),
+            ));
+        };
+        if st.history.is_none() {
+            st.history = Some(HistoryKeys::new(&self.dev, &self.screen)?);
+        }
+        let p = HistoryParams {
+            width: self.screen.width,
+            height: self.screen.height,
+            padded_width: self.screen.stride(),
+            has_history: st.reprojected as u32,
+            min_frames: HISTORY_MIN_FRAMES,
+            max_frames: HISTORY_MAX_FRAMES,
+        };
+        let src = &st.reprojection.src;
+        if let Some(h) = st.history.as_mut() {
+            self.rec.begin_pass("history_key")?;
+            h.history_key(&mut self.rec, &p, &self.estimate, src)?;
+        }
+        Ok(())
     }
 
     /// For edge-aware methods: records the G-buffer (unless `prepare_frame` wrote it) and the

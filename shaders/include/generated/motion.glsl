@@ -25,7 +25,19 @@ struct MotionParams {
 };
 const uint MOTION_PARAMS_SIZE = 80;
 
+struct HistoryParams {
+    uint width; // offset 0, size 4
+    uint height; // offset 4, size 4
+    uint padded_width; // offset 8, size 4
+    uint has_history; // offset 12, size 4
+    uint min_frames; // offset 16, size 4
+    uint max_frames; // offset 20, size 4
+};
+const uint HISTORY_PARAMS_SIZE = 24;
+
 const uint REPROJECT_NONE = 4294967295u;
+const uint HISTORY_MIN_FRAMES = 8u;
+const uint HISTORY_MAX_FRAMES = 64u;
 const float REPROJECT_TIE_BIAS = 0.00390625;
 const int REPROJECT_MAX_MOTION = 255;
 const float SIMILAR_MIN_COS = 0.9;
