@@ -42,7 +42,9 @@ use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
     TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
-use blueshift_permute::{PermutePasses, Screen, SortInput, SortParams, grid_offset, mask_offset};
+use blueshift_permute::{
+    PermutePasses, Screen, SortInput, SortParams, grid_offset, mask_offset, pair_phase,
+};
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use passes::ImagePasses;
 use seeds::{key_words, seeds_of};
@@ -442,20 +444,6 @@ impl Renderer {
     }
 }
 
-/// Checkerboard phase of the antithetic pairs in `frame`: alternating, or with `hashed` a hash
-/// bit of the frame. History keys need the hash: a pan by an odd number of pixels per frame
-/// cancels the alternation, so a surface point would always take the lower (or upper) half of
-/// its class's keys; its history mean then carries that bias back into its keys (edges scene,
-/// pan 1, 4 spp: P1 0.813 alternating, 0.751 hashed). The other grid methods keep the
-/// alternation their reports were measured with (hashed changes them within noise).
-pub fn pair_phase(frame: u64, hashed: bool) -> u32 {
-    if hashed {
-        blueshift_sampling::rng::pcg_hash(frame as u32 ^ (frame >> 32) as u32) & 1
-    } else {
-        (frame % 2) as u32
-    }
-}
-
 /// Per-frame mask offset of `mask-r2`: the R2 sequence scaled to the tile (rounded, which is
 /// fine here: no retarget table depends on it).
 pub fn r2_offset(frame: u64, n: u32) -> (u32, u32) {
@@ -464,25 +452,4 @@ pub fn r2_offset(frame: u64, n: u32) -> (u32, u32) {
     let fx = (0.5 + t / g).fract();
     let fy = (0.5 + t / (g * g)).fract();
     ((fx * n as f64) as u32 % n, (fy * n as f64) as u32 % n)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::pair_phase;
-
-    /// Under a pan of one pixel per frame, a surface point's checkerboard colour is (its
-    /// screen x, which drops by one per frame, plus the phase) mod 2: constant with the
-    /// alternating phase, but both colours about equally often with the hashed one.
-    #[test]
-    fn hashed_pair_phase_does_not_lock_to_an_odd_pan() {
-        let colour = |hashed: bool, t: u64| (pair_phase(t, hashed) as u64 + 1000 - t) % 2;
-        let frames = 1..=256u64;
-        let alternating: Vec<u64> = frames.clone().map(|t| colour(false, t)).collect();
-        assert!(alternating.iter().all(|&c| c == alternating[0]));
-        let lower = frames.filter(|&t| colour(true, t) == 0).count();
-        assert!(
-            (96..=160).contains(&lower),
-            "{lower} of 256 frames in one colour"
-        );
-    }
 }
