@@ -59,7 +59,8 @@ gpu_struct! {
 }
 
 /// `HistoryParams::min_frames` and `max_frames` of `sort-grid-history` (README, "History
-/// keys": 1-4 frames of history made pans worse; 16-64 frames differ within noise).
+/// keys": ranking against histories of one or two frames made pans worse; a minimum of 4 or
+/// 8 and a maximum of 16 or 64 frames differ within noise).
 pub const HISTORY_MIN_FRAMES: u32 = 8;
 pub const HISTORY_MAX_FRAMES: u32 = 64;
 

@@ -1,5 +1,6 @@
 //! CPU twins of `shaders/permute/sort_seeds.comp` and `retarget_seeds.comp`. Same inputs,
-//! same arithmetic (integer keys only), so the GPU must agree exactly.
+//! same arithmetic (integer ranks, over keys from the same float operations in the same
+//! order), so the GPU must agree exactly.
 use crate::{RetargetParams, SortParams};
 
 /// Sort key of a float (a luminance, or a signed error for history keys): a u32 that orders
