@@ -46,7 +46,9 @@ pub struct RenderArgs {
     pub scene: SceneArgs,
     #[arg(long, default_value_t = 16)]
     pub frames: u32,
-    /// white, white-fixed, sobol, hbo19, mask-r2, stbn, sort, sort-retarget.
+    /// white, white-fixed, sobol, hbo19, mask-r2, stbn, sort, sort-retarget, or one of our
+    /// extensions: sort-retarget-{reproject,edges,demod,plus}, sort-grid, sort-grid-{edges,plus,
+    /// pairs,history} (README, "Beyond the paper").
     #[arg(long, default_value = "sort-retarget")]
     pub method: String,
     /// static, pan:PX (image-space pan, px/frame), orbit:DEG (deg/frame), swing:DEG (an orbit
