@@ -35,9 +35,9 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
 
 // Thin classes (at most 2 columns or 2 rows of the block; with pairs == 2 every class) rank
 // against antithetic pairs instead of the mask: pixels of one checkerboard colour keep their
-// mask keys and take the lower half of the class's keys; each pixel of the other colour takes the upper half, in the
-// reverse order of its partner's mask key (partner: the class's pixel to the left, else right,
-// above, below), so neighbours hold opposite errors. Mask keys are u16 ranks, below 0x10000.
+// mask keys and take the lower half of the class's keys; each pixel of the other colour takes
+// the upper half, in the reverse order of its partner's mask key (partner: the class's pixel
+// to the left, else right, above, below), so neighbours hold opposite errors. Mask keys are u16 ranks, below 0x10000.
 // Classes are in-block indices (classify_pixels' leaders, or 0), so spans index by class.
 void pair_thin_classes(SortParams p, ivec2 origin, uint n, uint cell[64], uint cls[64],
                        inout uint mask_key[64]) {
@@ -98,12 +98,9 @@ void main() {
         mask_key[n] = mask[m.y * p.mask_size + m.x];
         seed[n] = seeds[px.y * p.stride + px.x];
         cls[n] = classes[px.y * p.width + px.x];
+        csum[min(cls[n], 63u)] += val[n];  // per-class sums, for pixels without history
+        ccount[min(cls[n], 63u)] += 1.0;
         n++;
-    }
-    for (uint a = 0u; a < n; ++a) {
-        uint c = min(cls[a], 63u);
-        csum[c] += val[a];
-        ccount[c] += 1.0;
     }
     for (uint a = 0u; a < n; ++a) {
         uint c = min(cls[a], 63u);

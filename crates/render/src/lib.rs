@@ -125,7 +125,8 @@ pub struct Renderer {
     view_offset: (f32, f32),
     frame: u64,
     accumulated: u32,
-    /// All-zero surface classes: the paper's sorting (one class per block).
+    /// All-zero surface classes: the paper's sorting (one class per block). Also the sorting
+    /// pass's history means for methods without history keys (zero bits are 0.0: raw keys).
     zero_classes: Buffer,
     /// G-buffers and reprojection state, created when a method first needs them.
     motion: Option<motion::MotionState>,

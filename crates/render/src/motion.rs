@@ -195,9 +195,6 @@ impl Renderer {
                 "history keys without motion state".into(),
             ));
         };
-        if st.history.is_none() {
-            st.history = Some(HistoryKeys::new(&self.dev, &self.screen)?);
-        }
         let p = HistoryParams {
             width: self.screen.width,
             height: self.screen.height,
@@ -206,11 +203,12 @@ impl Renderer {
             min_frames: HISTORY_MIN_FRAMES,
             max_frames: HISTORY_MAX_FRAMES,
         };
-        let src = &st.reprojection.src;
-        if let Some(h) = st.history.as_mut() {
-            self.rec.begin_pass("history_key")?;
-            h.history_key(&mut self.rec, &p, &self.estimate, src)?;
-        }
+        let h = match &mut st.history {
+            Some(h) => h,
+            slot @ None => slot.insert(HistoryKeys::new(&self.dev, &self.screen)?),
+        };
+        self.rec.begin_pass("history_key")?;
+        h.history_key(&mut self.rec, &p, &self.estimate, &st.reprojection.src)?;
         Ok(())
     }
 
