@@ -25,6 +25,8 @@ mod history;
 #[cfg(test)]
 mod motion;
 #[cfg(test)]
+mod oracle;
+#[cfg(test)]
 mod permute;
 #[cfg(test)]
 mod rng;

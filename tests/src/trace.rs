@@ -212,6 +212,10 @@ fn renderer_seeds_stay_a_permutation() {
         for f in 0..6 {
             // A pan (reprojection moves seeds off screen and back in) then a still frame.
             r.set_view_offset(((f.min(4) * 3) as f32, 0.0));
+            if method.needs_reference() {
+                let lum: Vec<f32> = (0..70 * 45).map(|i| (i % 13) as f32 * 0.05).collect();
+                r.set_reference_luminance(&lum).unwrap();
+            }
             r.render_frame().unwrap();
             assert!(blueshift_permute::is_permutation_of(
                 &r.read_seeds().unwrap(),

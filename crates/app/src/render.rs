@@ -97,8 +97,19 @@ pub fn load_scene(spec: &str) -> Result<Scene> {
     Ok(scene)
 }
 
+/// A method for rendering without references: every method but the evaluation-only oracle.
+pub fn parse_method(name: &str) -> Result<Method> {
+    let method: Method = name.parse().map_err(anyhow::Error::msg)?;
+    if method.needs_reference() {
+        bail!(
+            "method {method} ranks exact errors against a reference: only `blueshift eval` runs it"
+        );
+    }
+    Ok(method)
+}
+
 pub fn config(a: &SceneArgs, method: &str) -> Result<RenderConfig> {
-    let method: Method = method.parse().map_err(anyhow::Error::msg)?;
+    let method = parse_method(method)?;
     let sampler =
         match &a.sampler {
             None => None,

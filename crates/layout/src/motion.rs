@@ -58,6 +58,16 @@ gpu_struct! {
     }
 }
 
+gpu_struct! {
+    /// Push constants of `permute/oracle_key` (`sort-grid-oracle`, evaluation only): each
+    /// visible pixel's sorting key becomes its luminance error against the frame's reference.
+    pub struct OracleParams {
+        /// Visible screen: the estimate and the reference are W*H.
+        pub width: u32,
+        pub height: u32,
+    }
+}
+
 /// `HistoryParams::min_frames` and `max_frames` of `sort-grid-history` (README, "History
 /// keys": ranking against histories of one or two frames made pans worse; a minimum of 4 or
 /// 8 and a maximum of 16 or 64 frames differ within noise).

@@ -130,6 +130,8 @@ pub struct Renderer {
     zero_classes: Buffer,
     /// G-buffers and reprojection state, created when a method first needs them.
     motion: Option<motion::MotionState>,
+    /// `sort-grid-oracle`'s pass, and the frame its reference luminance was set for.
+    oracle: Option<(blueshift_permute::OracleKeys, u64)>,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -195,6 +197,7 @@ impl Renderer {
                 &vec![0u32; pixels as usize],
             )?,
             motion: None,
+            oracle: None,
             cfg,
         };
         Ok(r)
@@ -370,13 +373,14 @@ impl Renderer {
                 let grid = grid_offset(self.frame + 1, block);
                 SortParams {
                     pairs: m.pairs(),
-                    phase: pair_phase(self.frame + 1, m.history_keys()),
+                    phase: pair_phase(self.frame + 1, m.hashes_pair_phase()),
                     ..self.screen.sort_params_on_grid(block, next, grid)?
                 }
             } else {
                 self.screen.sort_params(block, off)?
             };
             self.record_history_keys()?;
+            self.record_oracle_keys()?;
             self.record_classes(&tp, &sp)?;
             self.rec.begin_pass("sort")?;
             let classes = match (&self.motion, m.edge_aware()) {

@@ -48,6 +48,10 @@ pub enum Method {
     /// Ours: `SortGridPlus` ranking history keys (`permute/history_key`): each pixel's key
     /// minus its surface's mean key over earlier frames, an estimate of the seed's error.
     SortGridHistory,
+    /// Evaluation only: `SortGridHistory`'s passes, but the sorting pass ranks each pixel's
+    /// exact luminance error against the frame's reference (`permute/oracle_key`). No
+    /// renderer has that reference; the method measures the ceiling of any sorting key.
+    SortGridOracle,
 }
 
 /// Block edge of the moving-grid methods, whatever the paper's block size: without
@@ -56,7 +60,7 @@ pub enum Method {
 pub const GRID_BLOCK: u32 = 8;
 
 impl Method {
-    pub const ALL: [Method; 17] = [
+    pub const ALL: [Method; 18] = [
         Method::White,
         Method::WhiteFixed,
         Method::Sobol,
@@ -74,6 +78,7 @@ impl Method {
         Method::SortGridPlus,
         Method::SortGridPairs,
         Method::SortGridHistory,
+        Method::SortGridOracle,
     ];
 
     pub fn name(self) -> &'static str {
@@ -95,6 +100,7 @@ impl Method {
             Method::SortGridPlus => "sort-grid-plus",
             Method::SortGridPairs => "sort-grid-pairs",
             Method::SortGridHistory => "sort-grid-history",
+            Method::SortGridOracle => "sort-grid-oracle",
         }
     }
 
@@ -131,6 +137,7 @@ impl Method {
                 | Method::SortGridPlus
                 | Method::SortGridPairs
                 | Method::SortGridHistory
+                | Method::SortGridOracle
         )
     }
 
@@ -169,6 +176,7 @@ impl Method {
                 | Method::SortGridPlus
                 | Method::SortGridPairs
                 | Method::SortGridHistory
+                | Method::SortGridOracle
         )
     }
 
@@ -194,12 +202,26 @@ impl Method {
                 | Method::SortGridPlus
                 | Method::SortGridPairs
                 | Method::SortGridHistory
+                | Method::SortGridOracle
         )
     }
 
     /// Whether the sorting pass ranks history keys (`permute/history_key`).
     pub fn history_keys(self) -> bool {
         self == Method::SortGridHistory
+    }
+
+    /// Whether the sorting pass ranks exact errors (`permute/oracle_key`), so that every frame
+    /// needs `Renderer::set_reference_luminance` first (only `blueshift eval` has references).
+    pub fn needs_reference(self) -> bool {
+        self == Method::SortGridOracle
+    }
+
+    /// Whether the pairs' checkerboard phase is a hash bit of the frame rather than its parity
+    /// (`permute::pair_phase`): the methods that rank errors, where an alternating phase that a
+    /// 1 px/frame pan cancels fed a bias back through the history means.
+    pub fn hashes_pair_phase(self) -> bool {
+        self.history_keys() || self.needs_reference()
     }
 
     /// Which classes rank against antithetic pairs (`SortParams::pairs`): thin ones for the

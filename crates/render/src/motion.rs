@@ -5,11 +5,11 @@ use crate::gbuffer::GBufferPass;
 use crate::{RenderError, Renderer, Result, SceneBuffers, SceneImages};
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::motion::{
-    GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HistoryParams, MotionParams,
+    GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HistoryParams, MotionParams, OracleParams,
 };
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::{
-    HistoryKeys, Reprojection, Screen, follow_offset, mask_offset, mean_motion,
+    HistoryKeys, OracleKeys, Reprojection, Screen, follow_offset, mask_offset, mean_motion,
 };
 
 /// G-buffers (this and the previous frame), surface classes, reprojection scratch, and what
@@ -209,6 +209,43 @@ impl Renderer {
         };
         self.rec.begin_pass("history_key")?;
         h.history_key(&mut self.rec, &p, &self.estimate, &st.reprojection.src)?;
+        Ok(())
+    }
+
+    /// Sets this frame's reference luminance (W*H, row-major) for `sort-grid-oracle`, which
+    /// ranks exact errors: call before every `render_frame` of that method.
+    pub fn set_reference_luminance(&mut self, luminance: &[f32]) -> Result<()> {
+        let (w, h) = (self.screen.width, self.screen.height);
+        let (keys, frame) = match &mut self.oracle {
+            Some(o) => o,
+            slot @ None => slot.insert((OracleKeys::new(&self.dev, w, h)?, 0)),
+        };
+        keys.set_reference(luminance)?;
+        *frame = self.frame;
+        Ok(())
+    }
+
+    /// For `sort-grid-oracle`: records `oracle_key` (after the trace pass, before sorting).
+    pub(crate) fn record_oracle_keys(&mut self) -> Result<()> {
+        if !self.cfg.method.needs_reference() {
+            return Ok(());
+        }
+        let keys = match &self.oracle {
+            Some((keys, frame)) if *frame == self.frame => keys,
+            _ => {
+                return Err(RenderError::Invalid(format!(
+                    "{} ranks exact errors and needs frame {}'s reference luminance \
+                     (Renderer::set_reference_luminance); only `blueshift eval` has references",
+                    self.cfg.method, self.frame
+                )));
+            }
+        };
+        let p = OracleParams {
+            width: self.screen.width,
+            height: self.screen.height,
+        };
+        self.rec.begin_pass("oracle_key")?;
+        keys.oracle_key(&mut self.rec, &p, &self.estimate)?;
         Ok(())
     }
 

@@ -35,6 +35,12 @@ struct HistoryParams {
 };
 const uint HISTORY_PARAMS_SIZE = 24;
 
+struct OracleParams {
+    uint width; // offset 0, size 4
+    uint height; // offset 4, size 4
+};
+const uint ORACLE_PARAMS_SIZE = 8;
+
 const uint REPROJECT_NONE = 4294967295u;
 const uint HISTORY_MIN_FRAMES = 8u;
 const uint HISTORY_MAX_FRAMES = 64u;

@@ -276,12 +276,15 @@ fn run_method(
             r.set_camera(config.camera.camera(&base, t));
             let o = config.camera.view_offset(t);
             r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
+            let rf = refs.frame(t, w, h);
+            if method.needs_reference() {
+                r.set_reference_luminance(&rf.luminance())?;
+            }
             let stats = r.render_frame()?;
             for p in stats.passes {
                 times.entry(p.name).or_default().push(p.ms);
             }
             let est = r.read_estimate()?;
-            let rf = refs.frame(t, w, h);
             if args.save_frames && seq == 0 {
                 save_frame(args, config, method, t, &est, &rf.px)?;
             }

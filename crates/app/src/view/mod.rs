@@ -10,7 +10,6 @@ mod window;
 use crate::GpuOpts;
 use crate::render::{SceneArgs, config, load_assets, load_scene};
 use anyhow::{Context, Result, bail};
-use blueshift_render::Method;
 use controls::Settings;
 use std::path::PathBuf;
 
@@ -123,7 +122,7 @@ pub fn run(gpu: &GpuOpts, args: &ViewArgs) -> Result<()> {
     let size =
         parse_size(&format!("{}x{}", args.width, args.height)).context("--width/--height")?;
     let script = script(args)?;
-    let parse = |m: &str| m.parse::<Method>().map_err(anyhow::Error::msg);
+    let parse = crate::render::parse_method;
     let settings = Settings {
         methods: [parse(&args.method)?, parse(&args.method_b)?],
         side: 0,
