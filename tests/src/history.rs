@@ -3,7 +3,7 @@
 //! and a still image whose history keys rank pixels by their error, not their value.
 use crate::{Gpu, Lcg};
 use blueshift_device::Buffer;
-use blueshift_layout::motion::{HistoryParams, REPROJECT_NONE};
+use blueshift_layout::motion::{GBufferTexel, HistoryParams, REPROJECT_NONE};
 use blueshift_permute::{HistoryKeys, Screen, history_key_cpu, sort_seeds_cpu};
 
 /// A source map like reproject_motion's: every visible pixel maps to a random visible pixel of
@@ -20,6 +20,19 @@ fn random_src(sc: &Screen, rng: &mut Lcg) -> Vec<u32> {
         }
     }
     src
+}
+
+/// A G-buffer of two surfaces (materials 1 and 2, random per pixel) and sky (0) on one plane,
+/// so `similar` is "same material".
+fn random_gbuffer(w: u32, h: u32, rng: &mut Lcg) -> Vec<GBufferTexel> {
+    (0..w * h)
+        .map(|i| GBufferTexel {
+            position: glam::Vec3::new((i % w) as f32, (i / w) as f32, 5.0),
+            material: rng.next_u32() % 3,
+            normal: glam::Vec3::Z,
+            depth: 5.0,
+        })
+        .collect()
 }
 
 #[test]
@@ -39,19 +52,25 @@ fn history_keys_match_cpu_over_frames() {
                 has_history: u32::from(frame > 0),
                 min_frames: 2,
                 max_frames: 3,
+                // 3x3, single-pixel and 5x5 windows in turn.
+                radius: [1, 0, 2][frame as usize % 3],
             };
             let keys: Vec<f32> = (0..w * h).map(|_| rng.unit() * 10.0 - 2.0).collect();
             let est: Vec<[f32; 4]> = keys.iter().map(|&k| [1.0, 2.0, 3.0, k]).collect();
             let src = random_src(&sc, &mut rng);
             let est_b = Buffer::from_slice(gpu.dev(), "history.estimate", &est).unwrap();
             let src_b = Buffer::from_slice(gpu.dev(), "history.src", &src).unwrap();
+            let g = random_gbuffer(w, h, &mut rng);
+            let g_b = Buffer::from_slice(gpu.dev(), "history.gbuffer", &g).unwrap();
             let rec = gpu.rec.as_mut().unwrap();
             rec.begin().unwrap();
             rec.begin_pass("history_key").unwrap();
-            keys_pass.history_key(rec, &p, &est_b, &src_b).unwrap();
+            keys_pass
+                .history_key(rec, &p, &est_b, &src_b, &g_b)
+                .unwrap();
             rec.submit_and_wait().unwrap();
 
-            let (hist, mean) = history_key_cpu(&p, &keys, &src, &cpu_hist);
+            let (hist, mean) = history_key_cpu(&p, &keys, &src, &cpu_hist, &g);
             let gpu_hist = keys_pass.current().read::<[f32; 2]>().unwrap();
             let gpu_mean = keys_pass.mean.read::<f32>().unwrap();
             for y in 0..h {
@@ -69,14 +88,79 @@ fn history_keys_match_cpu_over_frames() {
             } else if frame == 1 {
                 assert_eq!(nan, mean.len(), "one frame of history is below min_frames");
             } else {
+                // Single pixels: holes and restarted histories are NaN. Windows: fewer NaN.
                 assert!(
-                    nan > 0 && nan < mean.len(),
+                    (p.radius > 0 || nan > 0) && nan < mean.len(),
                     "frame {frame}: {nan} NaN means"
                 );
             }
             cpu_hist = hist;
         }
     }
+}
+
+/// The 3x3 window: over one surface a linear gradient of history means averages to the
+/// centre's own value; a pixel of another surface or with a too-short history is left out.
+#[test]
+fn history_window_keeps_gradients_and_surfaces() {
+    let (w, h) = (5u32, 5u32);
+    let sc = Screen::new(w, h, 8).unwrap();
+    let pw = sc.stride();
+    let src: Vec<u32> = (0..sc.seed_count() as u32)
+        .map(|i| {
+            if i % pw < w && i / pw < h {
+                i
+            } else {
+                REPROJECT_NONE
+            }
+        })
+        .collect();
+    let ramp = |x: u32, y: u32| 3.0 * x as f32 + 5.0 * y as f32 + 1.0;
+    let mut hist = vec![[0.0f32; 2]; sc.seed_count()];
+    for y in 0..h {
+        for x in 0..w {
+            hist[(y * pw + x) as usize] = [ramp(x, y), 10.0];
+        }
+    }
+    let texel = |material| GBufferTexel {
+        position: glam::Vec3::new(0.0, 0.0, 5.0),
+        material,
+        normal: glam::Vec3::Z,
+        depth: 5.0,
+    };
+    let mut g = vec![texel(1); (w * h) as usize];
+    let p = HistoryParams {
+        width: w,
+        height: h,
+        padded_width: pw,
+        has_history: 1,
+        min_frames: 4,
+        max_frames: 64,
+        radius: 1,
+    };
+    let keys = vec![0.0; (w * h) as usize];
+    let centre = (2 * w + 2) as usize;
+    let (_, mean) = history_key_cpu(&p, &keys, &src, &hist, &g);
+    // One rounding in the division by the count.
+    assert!(
+        (mean[centre] - ramp(2, 2)).abs() <= 1e-5 * ramp(2, 2),
+        "{}",
+        mean[centre]
+    );
+    // Another surface at (1, 1) with a far mean, and a young history at (3, 1).
+    g[(w + 1) as usize] = texel(2);
+    hist[(pw + 1) as usize][0] = 1000.0;
+    hist[(pw + 3) as usize][1] = 2.0;
+    let (_, mean) = history_key_cpu(&p, &keys, &src, &hist, &g);
+    let kept = [(2, 1), (1, 2), (2, 2), (3, 2), (1, 3), (2, 3), (3, 3)];
+    let want = kept.iter().map(|&(x, y)| ramp(x, y)).sum::<f32>() / kept.len() as f32;
+    assert!(
+        (mean[centre] - want).abs() <= 1e-5 * want,
+        "{} vs {want}",
+        mean[centre]
+    );
+    // The other surface's pixel has no neighbour of its surface but itself.
+    assert_eq!(mean[(w + 1) as usize], 1000.0);
 }
 
 /// A still block whose true values vary (a gradient) under errors of random sign: with the

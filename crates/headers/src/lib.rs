@@ -40,6 +40,7 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("REPROJECT_NONE", motion::REPROJECT_NONE)
                 .constant("HISTORY_MIN_FRAMES", motion::HISTORY_MIN_FRAMES)
                 .constant("HISTORY_MAX_FRAMES", motion::HISTORY_MAX_FRAMES)
+                .constant("HISTORY_RADIUS", motion::HISTORY_RADIUS)
                 .constant_f32("REPROJECT_TIE_BIAS", motion::REPROJECT_TIE_BIAS)
                 .constant_i32("REPROJECT_MAX_MOTION", motion::REPROJECT_MAX_MOTION)
                 .constant_f32("SIMILAR_MIN_COS", motion::SIMILAR_MIN_COS)

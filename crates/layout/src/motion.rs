@@ -50,11 +50,17 @@ gpu_struct! {
         /// 1 when `src` maps this frame's pixels to the previous frame's; 0 on the first frame
         /// of a sequence (every history restarts, every pixel ranks its raw key).
         pub has_history: u32,
-        /// A history of fewer frames is too noisy to rank against: the pixel gets NaN (the
-        /// sorting pass then uses its class's mean key in the block).
+        /// Histories of fewer frames are too noisy to rank against and are left out of the
+        /// window below; a pixel whose window has none gets NaN (the sorting pass then uses
+        /// its class's mean key in the block).
         pub min_frames: u32,
         /// The mean weighs the newest key by 1 / min(frames, max_frames).
         pub max_frames: u32,
+        /// A pixel ranks against the mean of the histories in its (2 radius + 1)^2 window that
+        /// show its surface (`similar` G-buffer texels): a 3x3 window averages the history's
+        /// own noise down in smooth regions, and over a symmetric window a linear gradient
+        /// averages to its centre value, so only curvature biases it.
+        pub radius: u32,
     }
 }
 
@@ -68,11 +74,13 @@ gpu_struct! {
     }
 }
 
-/// `HistoryParams::min_frames` and `max_frames` of `sort-grid-history` (README, "History
-/// keys": ranking against histories of one or two frames made pans worse; a minimum of 4 or
-/// 8 and a maximum of 16 or 64 frames differ within noise).
-pub const HISTORY_MIN_FRAMES: u32 = 8;
+/// `HistoryParams::min_frames`, `max_frames` and `radius` of `sort-grid-history` (README,
+/// "History keys": single-pixel histories of one or two frames made pans worse; with the 3x3
+/// window a minimum of 4 frames beat 8 on pans, a maximum of 16 frames lost to 64 under
+/// rotation, and a 5x5 window gained nothing over 3x3).
+pub const HISTORY_MIN_FRAMES: u32 = 4;
 pub const HISTORY_MAX_FRAMES: u32 = 64;
+pub const HISTORY_RADIUS: u32 = 1;
 
 /// "No pixel" in the reprojection buffers.
 pub const REPROJECT_NONE: u32 = 0xffff_ffff;

@@ -2,9 +2,10 @@
 //! key its surface showed in earlier frames (fetched through the reprojection's source map), so
 //! blocks rank seeds by their error rather than by the image's own variation. The pass, its
 //! two history buffers (ping-pong) and the CPU twin.
+use crate::similar;
 use crate::{Result, Screen};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, MemoryLocation, Recorder};
-use blueshift_layout::motion::{HistoryParams, REPROJECT_NONE};
+use blueshift_layout::motion::{GBufferTexel, HistoryParams, REPROJECT_NONE};
 
 /// The pass and the history means (mean key, frames) of the last two frames.
 pub struct HistoryKeys {
@@ -30,6 +31,7 @@ impl HistoryKeys {
             Binding::storage(2, "hist_in"),
             Binding::storage(3, "hist_out"),
             Binding::storage(4, "hist_mean"),
+            Binding::storage(5, "g"),
         ];
         let pass = blueshift_shaders::pipeline(
             dev,
@@ -52,15 +54,16 @@ impl HistoryKeys {
         })
     }
 
-    /// Records the pass: from `estimate`'s keys (W*H vec4, key in w) and `src`, the
-    /// reprojection's source map (read only when `p.has_history` is 1), the new history and
-    /// [`Self::mean`].
+    /// Records the pass: from `estimate`'s keys (W*H vec4, key in w), `src`, the
+    /// reprojection's source map (read only when `p.has_history` is 1), and this frame's
+    /// G-buffer (W*H, for the window's surface test), the new history and [`Self::mean`].
     pub fn history_key(
         &mut self,
         rec: &mut Recorder,
         p: &HistoryParams,
         estimate: &Buffer,
         src: &Buffer,
+        gbuffer: &Buffer,
     ) -> Result<()> {
         let (hin, hout) = (&self.hist[1 - self.next], &self.hist[self.next]);
         rec.dispatch(
@@ -71,6 +74,7 @@ impl HistoryKeys {
                 hin.into(),
                 hout.into(),
                 (&self.mean).into(),
+                gbuffer.into(),
             ],
             bytemuck::bytes_of(p),
             [p.width.div_ceil(8), p.height.div_ceil(8), 1],
@@ -86,14 +90,15 @@ impl HistoryKeys {
 }
 
 /// CPU twin of `history_key`: from this frame's keys (W*H), the source map `src` and the
-/// previous history `hist` (both padded), the new history (padded; pixels outside the visible
-/// screen keep `hist`'s values) and the history mean per visible pixel (NaN: rank against the
-/// class mean; 0 on a sequence's first frame).
+/// previous history `hist` (both padded) and this frame's G-buffer (W*H), the new history
+/// (padded; pixels outside the visible screen keep `hist`'s values) and the mean each visible
+/// pixel ranks against (NaN: rank against the class mean; 0 on a sequence's first frame).
 pub fn history_key_cpu(
     p: &HistoryParams,
     keys: &[f32],
     src: &[u32],
     hist: &[[f32; 2]],
+    gbuffer: &[GBufferTexel],
 ) -> (Vec<[f32; 2]>, Vec<f32>) {
     let mut out = hist.to_vec();
     let mut mean = vec![0.0; (p.width * p.height) as usize];
@@ -102,25 +107,55 @@ pub fn history_key_cpu(
             let at = (y * p.width + x) as usize;
             let here = (y * p.padded_width + x) as usize;
             let key = keys[at];
-            let s = if p.has_history != 0 {
-                src[here]
-            } else {
-                REPROJECT_NONE
-            };
-            if s == REPROJECT_NONE {
+            if p.has_history == 0 {
                 out[here] = [key, 1.0];
-                mean[at] = if p.has_history != 0 { f32::NAN } else { 0.0 };
                 continue;
             }
-            let [m, frames] = hist[s as usize];
+            let [m, frames] = match src[here] {
+                REPROJECT_NONE => [0.0, 0.0],
+                s => hist[s as usize],
+            };
             let n = (frames + 1.0).min(p.max_frames as f32);
             out[here] = [m + (key - m) * (1.0 / n), n];
-            mean[at] = if frames >= p.min_frames as f32 {
-                m
-            } else {
-                f32::NAN
-            };
+            mean[at] = window_mean(p, x, y, src, hist, gbuffer);
         }
     }
     (out, mean)
+}
+
+/// The mean of the previous histories in (x, y)'s window that show its surface and have at
+/// least `min_frames` frames, summed row by row; NaN for none.
+fn window_mean(
+    p: &HistoryParams,
+    x: u32,
+    y: u32,
+    src: &[u32],
+    hist: &[[f32; 2]],
+    gbuffer: &[GBufferTexel],
+) -> f32 {
+    let (w, h, r) = (p.width as i64, p.height as i64, p.radius as i64);
+    let centre = &gbuffer[(y * p.width + x) as usize];
+    let (mut sum, mut count) = (0.0f32, 0.0f32);
+    for ny in y as i64 - r..=y as i64 + r {
+        for nx in x as i64 - r..=x as i64 + r {
+            if nx < 0 || ny < 0 || nx >= w || ny >= h {
+                continue;
+            }
+            let s = src[(ny * p.padded_width as i64 + nx) as usize];
+            if s == REPROJECT_NONE {
+                continue;
+            }
+            let [m, frames] = hist[s as usize];
+            if frames < p.min_frames as f32 || !similar(centre, &gbuffer[(ny * w + nx) as usize]) {
+                continue;
+            }
+            sum += m;
+            count += 1.0;
+        }
+    }
+    if count > 0.0 {
+        sum * (1.0 / count)
+    } else {
+        f32::NAN
+    }
 }

@@ -5,7 +5,8 @@ use crate::gbuffer::GBufferPass;
 use crate::{RenderError, Renderer, Result, SceneBuffers, SceneImages};
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::motion::{
-    GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HistoryParams, MotionParams, OracleParams,
+    GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HISTORY_RADIUS, HistoryParams,
+    MotionParams, OracleParams,
 };
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::{
@@ -202,13 +203,23 @@ impl Renderer {
             has_history: st.reprojected as u32,
             min_frames: HISTORY_MIN_FRAMES,
             max_frames: HISTORY_MAX_FRAMES,
+            radius: HISTORY_RADIUS,
         };
         let h = match &mut st.history {
             Some(h) => h,
             slot @ None => slot.insert(HistoryKeys::new(&self.dev, &self.screen)?),
         };
         self.rec.begin_pass("history_key")?;
-        h.history_key(&mut self.rec, &p, &self.estimate, &st.reprojection.src)?;
+        // This frame's G-buffer (`current_gbuffer`, borrowed field by field): history methods
+        // reproject, so prepare_frame has written it.
+        let gbuffer = &st.gbuffers[1 - st.next_g];
+        h.history_key(
+            &mut self.rec,
+            &p,
+            &self.estimate,
+            &st.reprojection.src,
+            gbuffer,
+        )?;
         Ok(())
     }
 
