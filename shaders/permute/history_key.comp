@@ -22,12 +22,13 @@ layout(set = 0, binding = 1, scalar) readonly buffer Src { uint src[]; };       
 layout(set = 0, binding = 2, scalar) readonly buffer HistIn { vec2 hist_in[]; };
 layout(set = 0, binding = 3, scalar) writeonly buffer HistOut { vec2 hist_out[]; };
 layout(set = 0, binding = 4, scalar) writeonly buffer Mean { float hist_mean[]; };  // W*H
-layout(set = 0, binding = 5, scalar) readonly buffer GBuffer { GBufferTexel g[]; };  // W*H
+// This frame's G-buffer, W*H.
+layout(set = 0, binding = 5, scalar) readonly buffer GBuffer { GBufferTexel gbuffer[]; };
 
 // Mean of the previous histories of q's window that show q's surface and are long enough;
 // summed row by row as in the twin.
 float window_mean(ivec2 q) {
-    GBufferTexel c = g[q.y * int(p.width) + q.x];
+    GBufferTexel c = gbuffer[q.y * int(p.width) + q.x];
     int r = int(p.radius);
     float sum = 0.0, count = 0.0;
     for (int y = q.y - r; y <= q.y + r; y++) {
@@ -36,7 +37,7 @@ float window_mean(ivec2 q) {
             uint s = src[y * int(p.padded_width) + x];
             if (s == REPROJECT_NONE) continue;
             vec2 h = hist_in[s];
-            if (h.y < float(p.min_frames) || !similar(c, g[y * int(p.width) + x])) continue;
+            if (h.y < float(p.min_frames) || !similar(c, gbuffer[y * int(p.width) + x])) continue;
             sum += h.x;
             count += 1.0;
         }

@@ -31,7 +31,7 @@ impl HistoryKeys {
             Binding::storage(2, "hist_in"),
             Binding::storage(3, "hist_out"),
             Binding::storage(4, "hist_mean"),
-            Binding::storage(5, "g"),
+            Binding::storage(5, "gbuffer"),
         ];
         let pass = blueshift_shaders::pipeline(
             dev,
