@@ -37,7 +37,8 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
 // against antithetic pairs instead of the mask: pixels of one checkerboard colour keep their
 // mask keys and take the lower half of the class's keys; each pixel of the other colour takes
 // the upper half, in the reverse order of its partner's mask key (partner: the class's pixel
-// to the left, else right, above, below), so neighbours hold opposite errors. Mask keys are u16 ranks, below 0x10000.
+// to the left, else right, above, below), so neighbours hold opposite errors. Mask keys are
+// u16 ranks, below 0x10000.
 // Classes are in-block indices (classify_pixels' leaders, or 0), so spans index by class.
 void pair_thin_classes(SortParams p, ivec2 origin, uint n, uint cell[64], uint cls[64],
                        inout uint mask_key[64]) {

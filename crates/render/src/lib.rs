@@ -130,8 +130,9 @@ pub struct Renderer {
     zero_classes: Buffer,
     /// G-buffers and reprojection state, created when a method first needs them.
     motion: Option<motion::MotionState>,
-    /// `sort-grid-oracle`'s pass, and the frame its reference luminance was set for.
-    oracle: Option<(blueshift_permute::OracleKeys, u64)>,
+    /// `sort-grid-oracle`'s pass, and the frame its reference luminance was set for (taken
+    /// by that frame: a reference never serves two frames, nor survives a reset).
+    oracle: Option<(blueshift_permute::OracleKeys, Option<u64>)>,
 }
 
 impl std::fmt::Debug for Renderer {

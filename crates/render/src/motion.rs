@@ -229,10 +229,10 @@ impl Renderer {
         let (w, h) = (self.screen.width, self.screen.height);
         let (keys, frame) = match &mut self.oracle {
             Some(o) => o,
-            slot @ None => slot.insert((OracleKeys::new(&self.dev, w, h)?, 0)),
+            slot @ None => slot.insert((OracleKeys::new(&self.dev, w, h)?, None)),
         };
         keys.set_reference(luminance)?;
-        *frame = self.frame;
+        *frame = Some(self.frame);
         Ok(())
     }
 
@@ -241,15 +241,14 @@ impl Renderer {
         if !self.cfg.method.needs_reference() {
             return Ok(());
         }
-        let keys = match &self.oracle {
-            Some((keys, frame)) if *frame == self.frame => keys,
-            _ => {
-                return Err(RenderError::Invalid(format!(
-                    "{} ranks exact errors and needs frame {}'s reference luminance \
-                     (Renderer::set_reference_luminance); only `blueshift eval` has references",
-                    self.cfg.method, self.frame
-                )));
-            }
+        // The reference is used up by this frame, set or not.
+        let stamp = self.oracle.as_mut().and_then(|(_, frame)| frame.take());
+        let (Some((keys, _)), true) = (&self.oracle, stamp == Some(self.frame)) else {
+            return Err(RenderError::Invalid(format!(
+                "{} ranks exact errors and needs frame {}'s reference luminance \
+                 (Renderer::set_reference_luminance); only `blueshift eval` has references",
+                self.cfg.method, self.frame
+            )));
         };
         let p = OracleParams {
             width: self.screen.width,

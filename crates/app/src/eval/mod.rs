@@ -277,8 +277,9 @@ fn run_method(
             let o = config.camera.view_offset(t);
             r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
             let rf = refs.frame(t, w, h);
+            let reference_y = rf.luminance();
             if method.needs_reference() {
-                r.set_reference_luminance(&rf.luminance())?;
+                r.set_reference_luminance(&reference_y)?;
             }
             let stats = r.render_frame()?;
             for p in stats.passes {
@@ -290,7 +291,6 @@ fn run_method(
             }
             // Luminance from rgb: the estimate's fourth channel is the sorting key, which
             // demodulating methods change.
-            let reference_y = rf.luminance();
             let e: Vec<f32> = est
                 .iter()
                 .zip(&reference_y)
