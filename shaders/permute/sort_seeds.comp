@@ -20,6 +20,9 @@ layout(set = 0, binding = 2, scalar) buffer Seeds { uint seeds[]; };            
 layout(set = 0, binding = 3, scalar) readonly buffer Classes { uint classes[]; };     // W*H
 // History means (history_key; zeros: the raw key), NaN where a pixel has no history yet: W*H.
 layout(set = 0, binding = 4, scalar) readonly buffer History { float hist_mean[]; };
+// (skewed classes, classes counted), summed over blocks with SortParams::count_skew
+// (count_skewed_classes); zeroed by the host.
+layout(set = 0, binding = 5, scalar) buffer Stats { uint sort_stats[2]; };
 
 // Orders like the float (CPU twin: sort_key): positives over 0x80000000, negatives inverted,
 // 0, -0 and NaN at 0x80000000.
@@ -76,6 +79,42 @@ void pair_thin_classes(SortParams p, ivec2 origin, uint n, uint cell[64], uint c
     for (uint a = 0u; a < n; ++a) mask_key[a] = key[a];
 }
 
+// (skewed, counted): classes of at least SKEW_MIN_PIXELS pixels in the block, and those among
+// them whose keys have a sample skewness |g| above SKEW_LIMIT. Keys are scaled by the largest
+// deviation from the class mean first, so that the third powers cannot overflow.
+// CPU twin: crates/permute/src/skew.rs count_skewed_classes.
+uvec2 count_skewed_classes(uint n, uint cls[64], float count[64], float key[64]) {
+    float mean[64], dmax[64], m2[64], m3[64];
+    for (uint c = 0u; c < 64u; ++c) {
+        mean[c] = 0.0;
+        dmax[c] = 0.0;
+        m2[c] = 0.0;
+        m3[c] = 0.0;
+    }
+    for (uint a = 0u; a < n; ++a) mean[min(cls[a], 63u)] += key[a];
+    for (uint c = 0u; c < 64u; ++c) mean[c] = count[c] > 0.0 ? mean[c] * (1.0 / count[c]) : 0.0;
+    for (uint a = 0u; a < n; ++a) {
+        uint c = min(cls[a], 63u);
+        dmax[c] = max(dmax[c], abs(key[a] - mean[c]));
+    }
+    for (uint a = 0u; a < n; ++a) {
+        uint c = min(cls[a], 63u);
+        precise float d = dmax[c] > 0.0 ? (key[a] - mean[c]) * (1.0 / dmax[c]) : 0.0;
+        precise float d2 = d * d;
+        m2[c] += d2;
+        m3[c] += d2 * d;
+    }
+    uvec2 r = uvec2(0u);
+    for (uint c = 0u; c < 64u; ++c) {
+        if (count[c] < float(SKEW_MIN_PIXELS)) continue;
+        // |g| > L  <=>  (m3 / n)^2 > L^2 (m2 / n)^3  <=>  m3^2 * n > L^2 * m2^3
+        precise float lhs = m3[c] * m3[c] * count[c];
+        precise float rhs = SKEW_LIMIT * SKEW_LIMIT * m2[c] * m2[c] * m2[c];
+        r += uvec2(lhs > rhs ? 1u : 0u, 1u);
+    }
+    return r;
+}
+
 void main() {
     uint B = p.block;
     uint block = gl_GlobalInvocationID.x;
@@ -103,10 +142,19 @@ void main() {
         ccount[min(cls[n], 63u)] += 1.0;
         n++;
     }
+    float key[64];
     for (uint a = 0u; a < n; ++a) {
         uint c = min(cls[a], 63u);
         float ref = isnan(hm[a]) ? csum[c] * (1.0 / ccount[c]) : hm[a];
-        lum_key[a] = sort_key(val[a] - ref);
+        key[a] = val[a] - ref;
+        lum_key[a] = sort_key(key[a]);
+    }
+    if (p.count_skew != 0u) {
+        uvec2 skew = count_skewed_classes(n, cls, ccount, key);
+        if (skew.y > 0u) {
+            atomicAdd(sort_stats[0], skew.x);
+            atomicAdd(sort_stats[1], skew.y);
+        }
     }
     if (p.pairs != 0u) pair_thin_classes(p, origin, n, cell, cls, mask_key);
     // pos_of_mask_rank[r] = the visible pixel holding the r-th smallest mask value.

@@ -69,8 +69,13 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             }
             m
         };
+        // Keys with a heavy tail in places (one pixel in 16 a firefly), so that the sorting
+        // pass's skewness count sees both kinds of classes.
         let lum: Vec<f32> = (0..w * h)
-            .map(|_| (rng.next_u32() % 40) as f32 * 0.5)
+            .map(|_| match rng.next_u32() % 16 {
+                0 => 500.0 + (rng.next_u32() % 40) as f32,
+                _ => (rng.next_u32() % 40) as f32 * 0.5,
+            })
             .collect();
         let est: Vec<[f32; 4]> = lum.iter().map(|&l| [l, l, l, l]).collect();
         // History means (history keys): NaN (rank against the class mean) for a quarter of
@@ -92,6 +97,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             let p = SortParams {
                 pairs,
                 phase,
+                count_skew: u32::from(pairs == 2),
                 ..sc.sort_params_on_grid(block, (5, 11), grid).unwrap()
             };
             let gb = Buffer::from_slice(gpu.dev(), "motion.gbuffer", &g).unwrap();
@@ -100,6 +106,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             let mask_b = Buffer::from_slice(gpu.dev(), "motion.mask", &mask).unwrap();
             let seeds = Buffer::from_slice(gpu.dev(), "motion.seeds", &init).unwrap();
             let history_b = Buffer::from_slice(gpu.dev(), "motion.history", &history).unwrap();
+            let stats_b = Buffer::from_slice(gpu.dev(), "motion.sort_stats", &[0u32; 2]).unwrap();
             let rec = gpu.rec.as_mut().unwrap();
             rec.begin().unwrap();
             rec.begin_pass("classify").unwrap();
@@ -114,6 +121,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
                         mask: &mask_b,
                         classes: &classes,
                         history: &history_b,
+                        stats: &stats_b,
                     },
                     &seeds,
                 )
@@ -132,7 +140,18 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
                 "the test G-buffer must have edges inside blocks"
             );
             let mut cpu = init.clone();
-            sort_seeds_cpu(&p, &lum, &mask, &cpu_classes, &history, &mut cpu);
+            let stats = sort_seeds_cpu(&p, &lum, &mask, &cpu_classes, &history, &mut cpu);
+            assert_eq!(
+                stats_b.read::<u32>().unwrap(),
+                stats,
+                "skewed classes {w}x{h} B={block} grid {grid:?} pairs {pairs}"
+            );
+            if p.count_skew != 0 && block == 8 {
+                assert!(
+                    stats[0] > 0 && stats[0] < stats[1],
+                    "the keys must give skewed and symmetric classes: {stats:?}"
+                );
+            }
             if pairs != 0 {
                 let mut plain = init.clone();
                 let p0 = SortParams { pairs: 0, ..p };

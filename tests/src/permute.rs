@@ -77,6 +77,7 @@ fn gpu_frame(
     let est = Buffer::from_slice(gpu.dev(), "permute.estimate", &estimate(lum)).unwrap();
     let zeros = vec![0u32; lum.len()];
     let classes = Buffer::from_slice(gpu.dev(), "permute.classes", &zeros).unwrap();
+    let stats = Buffer::from_slice(gpu.dev(), "permute.sort_stats", &[0u32; 2]).unwrap();
     let rec = gpu.rec.as_mut().unwrap();
     rec.begin().unwrap();
     rec.begin_pass("permute.sort_seeds").unwrap();
@@ -89,6 +90,7 @@ fn gpu_frame(
                 mask,
                 classes: &classes,
                 history: &classes,
+                stats: &stats,
             },
             seeds[0],
         )

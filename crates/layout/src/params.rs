@@ -28,8 +28,17 @@ gpu_struct! {
         /// Checkerboard phase (0 or 1) of the pairs: alternated per frame so that no pixel
         /// always takes the lower half of its class's keys.
         pub phase: u32,
+        /// 1: add (classes with skewed keys, classes counted) of every block to the stats
+        /// buffer (`count_skewed_classes`), for `sort-grid-adaptive`'s choice of pairs.
+        pub count_skew: u32,
     }
 }
+
+/// The sorting pass counts the classes of at least SKEW_MIN_PIXELS pixels in a block, and
+/// those among them whose keys have a sample skewness |g| > SKEW_LIMIT: antithetic pairs
+/// cannot cancel a heavy tail (README, "Adaptive pairs").
+pub const SKEW_MIN_PIXELS: u32 = 8;
+pub const SKEW_LIMIT: f32 = 2.0;
 
 gpu_struct! {
     /// Push constants of `permute/retarget_seeds` (one invocation per padded pixel).

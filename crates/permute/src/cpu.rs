@@ -1,6 +1,7 @@
 //! CPU twins of `shaders/permute/sort_seeds.comp` and `retarget_seeds.comp`. Same inputs,
 //! same arithmetic (integer ranks, over keys from the same float operations in the same
 //! order), so the GPU must agree exactly.
+use crate::skew::count_skewed_classes;
 use crate::{RetargetParams, SortParams};
 
 /// Sort key of a float (a luminance, or a signed error for history keys): a u32 that orders
@@ -36,6 +37,8 @@ fn ranks(keys: &[(u32, u32, usize)]) -> Vec<usize> {
 /// the thin-class test merges classes from 63 up.
 /// `history` (per visible pixel; zeros: the raw key) is subtracted from the key before
 /// ranking; NaN stands for the mean key of the pixel's class in the block (history_key_cpu).
+/// Returns (skewed classes, classes counted) summed over the blocks with `p.count_skew`
+/// (`count_skewed_classes`), else zeros: the GPU pass's stats.
 pub fn sort_seeds_cpu(
     p: &SortParams,
     lum: &[f32],
@@ -43,7 +46,8 @@ pub fn sort_seeds_cpu(
     classes: &[u32],
     history: &[f32],
     seeds: &mut [u32],
-) {
+) -> [u32; 2] {
+    let mut stats = [0, 0];
     let n = p.mask_size;
     let (bx, by) = crate::block_counts(p);
     for block in 0..bx * by {
@@ -57,18 +61,28 @@ pub fn sort_seeds_cpu(
             sum[c] += lum[at(x, y)];
             count[c] += 1.0;
         }
-        let lum_keys: Vec<_> = px
+        let keys: Vec<f32> = px
             .iter()
-            .map(|&(x, y, i)| {
+            .map(|&(x, y, _)| {
                 let (v, h) = (lum[at(x, y)], history[at(x, y)]);
                 let c = classes[at(x, y)].min(63) as usize;
-                let reference = if h.is_nan() {
+                v - if h.is_nan() {
                     sum[c] * (1.0 / count[c])
                 } else {
                     h
-                };
-                (classes[at(x, y)], sort_key(v - reference), i)
+                }
             })
+            .collect();
+        let block_classes: Vec<u32> = px.iter().map(|&(x, y, _)| classes[at(x, y)]).collect();
+        if p.count_skew != 0 {
+            let [skewed, counted] = count_skewed_classes(&block_classes, &keys, &count);
+            stats = [stats[0] + skewed, stats[1] + counted];
+        }
+        let lum_keys: Vec<_> = block_classes
+            .iter()
+            .zip(&keys)
+            .zip(&px)
+            .map(|((&c, &k), &(_, _, i))| (c, sort_key(k), i))
             .collect();
         let mask_keys: Vec<_> = px
             .iter()
@@ -101,6 +115,7 @@ pub fn sort_seeds_cpu(
             seeds[(dy * p.stride + dx) as usize] = old[j];
         }
     }
+    stats
 }
 
 /// Twin of `pair_thin_classes` in sort_seeds.comp: in classes at most 2 pixels wide or tall

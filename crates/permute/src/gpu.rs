@@ -3,7 +3,7 @@
 use crate::{PermuteError, Result, RetargetParams, SortParams};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder};
 
-/// What the sorting pass ranks.
+/// What the sorting pass ranks, and where it counts skewed classes.
 #[derive(Debug, Clone, Copy)]
 pub struct SortInput<'a> {
     /// vec4 (rgb, sorting key) per visible pixel.
@@ -15,6 +15,10 @@ pub struct SortInput<'a> {
     /// One f32 per visible pixel subtracted from the key (zeros: the raw key; else
     /// history_key's means, NaN for the class mean in the block).
     pub history: &'a Buffer,
+    /// Two u32 the pass adds (skewed classes, classes counted) to when
+    /// `SortParams::count_skew` is set; the caller zeroes them (`sort_seeds_cpu` returns the
+    /// same counts).
+    pub stats: &'a Buffer,
 }
 
 /// Pipelines of both permutation passes.
@@ -50,6 +54,7 @@ impl PermutePasses {
                 Binding::storage(2, "seeds"),
                 Binding::storage(3, "classes"),
                 Binding::storage(4, "history"),
+                Binding::storage(5, "stats"),
             ],
             std::mem::size_of::<SortParams>(),
         )?;
@@ -95,6 +100,7 @@ impl PermutePasses {
                 seeds.into(),
                 input.classes.into(),
                 input.history.into(),
+                input.stats.into(),
             ],
             bytemuck::bytes_of(p),
             block_groups(p)?,

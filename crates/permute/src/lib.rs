@@ -17,6 +17,7 @@ mod oracle;
 mod reproject;
 mod reproject_gpu;
 mod similar;
+mod skew;
 
 pub use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 pub use blueshift_layout::params::{RetargetParams, SortParams};
@@ -106,6 +107,7 @@ impl Screen {
             grid_y: grid.1,
             pairs: 0,
             phase: 0,
+            count_skew: 0,
         })
     }
     pub fn retarget_params(&self, offset: (u32, u32)) -> RetargetParams {

@@ -21,6 +21,7 @@ mod gbuffer;
 mod images;
 mod method;
 mod motion;
+mod pairs_gate;
 mod passes;
 mod readback;
 mod seeds;
@@ -33,6 +34,7 @@ pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
 pub use method::{GRID_BLOCK, Method};
 pub use motion::motion_params;
+pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
 pub use passes::{LLVMPIPE_LOOP_LIMIT, TRACE_BINDINGS, TRACE_LOOP_GUARD, TraceVariant};
 pub use seeds::{SeedMap, initial_seeds, tile_seeds};
 pub use upload::SceneBuffers;
@@ -128,6 +130,10 @@ pub struct Renderer {
     /// All-zero surface classes: the paper's sorting (one class per block). Also the sorting
     /// pass's history means for methods without history keys (zero bits are 0.0: raw keys).
     zero_classes: Buffer,
+    /// (skewed classes, classes counted) of the last sorting pass (`SortInput::stats`).
+    sort_stats: Buffer,
+    /// `sort-grid-adaptive`'s choice of pairs from the counts so far in this sequence.
+    pairs_gate: PairsGate,
     /// G-buffers and reprojection state, created when a method first needs them.
     motion: Option<motion::MotionState>,
     /// `sort-grid-oracle`'s pass, and the frame its reference luminance was set for (taken
@@ -197,6 +203,8 @@ impl Renderer {
                 "frame.classes.zero",
                 &vec![0u32; pixels as usize],
             )?,
+            sort_stats: Buffer::new(dev, "frame.sort_stats", 8, host)?,
+            pairs_gate: PairsGate::default(),
             motion: None,
             oracle: None,
             cfg,
@@ -241,6 +249,7 @@ impl Renderer {
         self.current = 0;
         self.frame = 0;
         self.accumulated = 0;
+        self.pairs_gate = PairsGate::default();
         if let Some(m) = &mut self.motion {
             m.reset();
         }
@@ -373,8 +382,13 @@ impl Renderer {
                 let next = mask_offset(self.frame + 1, shift, n);
                 let grid = grid_offset(self.frame + 1, block);
                 SortParams {
-                    pairs: m.pairs(),
+                    pairs: if m.adapts_pairs() {
+                        self.pairs_gate.pairs()
+                    } else {
+                        m.pairs()
+                    },
                     phase: pair_phase(self.frame + 1, m.hashes_pair_phase()),
+                    count_skew: u32::from(m.adapts_pairs()),
                     ..self.screen.sort_params_on_grid(block, next, grid)?
                 }
             } else {
@@ -383,6 +397,9 @@ impl Renderer {
             self.record_history_keys()?;
             self.record_oracle_keys()?;
             self.record_classes(&tp, &sp)?;
+            if sp.count_skew != 0 {
+                self.rec.fill_buffer(&self.sort_stats, 0)?;
+            }
             self.rec.begin_pass("sort")?;
             let classes = match (&self.motion, m.edge_aware()) {
                 (Some(st), true) => &st.classes,
@@ -397,6 +414,7 @@ impl Renderer {
                 mask: &self.mask,
                 classes,
                 history,
+                stats: &self.sort_stats,
             };
             self.permute
                 .sort_seeds(&mut self.rec, &sp, &input, &self.seeds[cur])?;
@@ -421,6 +439,10 @@ impl Renderer {
         passes.extend(self.rec.submit_and_wait()?);
         if m.retargets() {
             self.current = next;
+        }
+        if m.adapts_pairs() {
+            let s = self.sort_stats.read::<u32>()?;
+            self.pairs_gate.update([s[0], s[1]]);
         }
         let stats = FrameStats {
             frame: self.frame,

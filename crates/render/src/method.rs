@@ -48,6 +48,10 @@ pub enum Method {
     /// Ours: `SortGridPlus` ranking history keys (`permute/history_key`): each pixel's key
     /// minus its surface's mean key over earlier frames, an estimate of the seed's error.
     SortGridHistory,
+    /// Ours: `SortGridHistory` with antithetic pairs in every class while the sorting keys are
+    /// about symmetric, and in thin classes only while many classes have heavy-tailed keys
+    /// (counted by the sorting pass; `PairsGate`).
+    SortGridAdaptive,
     /// Evaluation only: `SortGridHistory`'s passes, but the sorting pass ranks each pixel's
     /// exact luminance error against the frame's reference (`permute/oracle_key`). No
     /// renderer has that reference; the method measures the ceiling of any sorting key.
@@ -60,7 +64,7 @@ pub enum Method {
 pub const GRID_BLOCK: u32 = 8;
 
 impl Method {
-    pub const ALL: [Method; 18] = [
+    pub const ALL: [Method; 19] = [
         Method::White,
         Method::WhiteFixed,
         Method::Sobol,
@@ -78,6 +82,7 @@ impl Method {
         Method::SortGridPlus,
         Method::SortGridPairs,
         Method::SortGridHistory,
+        Method::SortGridAdaptive,
         Method::SortGridOracle,
     ];
 
@@ -100,6 +105,7 @@ impl Method {
             Method::SortGridPlus => "sort-grid-plus",
             Method::SortGridPairs => "sort-grid-pairs",
             Method::SortGridHistory => "sort-grid-history",
+            Method::SortGridAdaptive => "sort-grid-adaptive",
             Method::SortGridOracle => "sort-grid-oracle",
         }
     }
@@ -137,6 +143,7 @@ impl Method {
                 | Method::SortGridPlus
                 | Method::SortGridPairs
                 | Method::SortGridHistory
+                | Method::SortGridAdaptive
                 | Method::SortGridOracle
         )
     }
@@ -176,6 +183,7 @@ impl Method {
                 | Method::SortGridPlus
                 | Method::SortGridPairs
                 | Method::SortGridHistory
+                | Method::SortGridAdaptive
                 | Method::SortGridOracle
         )
     }
@@ -189,6 +197,7 @@ impl Method {
                 | Method::SortGridPlus
                 | Method::SortGridPairs
                 | Method::SortGridHistory
+                | Method::SortGridAdaptive
         )
     }
 
@@ -202,13 +211,14 @@ impl Method {
                 | Method::SortGridPlus
                 | Method::SortGridPairs
                 | Method::SortGridHistory
+                | Method::SortGridAdaptive
                 | Method::SortGridOracle
         )
     }
 
     /// Whether the sorting pass ranks history keys (`permute/history_key`).
     pub fn history_keys(self) -> bool {
-        self == Method::SortGridHistory
+        matches!(self, Method::SortGridHistory | Method::SortGridAdaptive)
     }
 
     /// Whether the sorting pass ranks exact errors (`permute/oracle_key`), so that every frame
@@ -224,8 +234,14 @@ impl Method {
         self.history_keys() || self.needs_reference()
     }
 
+    /// Whether the sorting pass counts skewed classes and `PairsGate` chooses the pairs.
+    pub fn adapts_pairs(self) -> bool {
+        self == Method::SortGridAdaptive
+    }
+
     /// Which classes rank against antithetic pairs (`SortParams::pairs`): thin ones for the
-    /// moving grid, every one for `SortGridPairs`, none otherwise.
+    /// moving grid, every one for `SortGridPairs`, none otherwise (`SortGridAdaptive`: the
+    /// thin ones here, `PairsGate` chooses per frame).
     pub fn pairs(self) -> u32 {
         match self {
             Method::SortGridPairs => 2,

@@ -15,8 +15,9 @@ struct SortParams {
     uint grid_y; // offset 32, size 4
     uint pairs; // offset 36, size 4
     uint phase; // offset 40, size 4
+    uint count_skew; // offset 44, size 4
 };
-const uint SORT_PARAMS_SIZE = 44;
+const uint SORT_PARAMS_SIZE = 48;
 
 struct RetargetParams {
     uint padded_width; // offset 0, size 4
@@ -72,4 +73,6 @@ const uint MASK_DIMS = 9u;
 const uint DIMS_PER_BOUNCE = 7u;
 const uint TRACE_GROUP_X = 8u;
 const uint TRACE_GROUP_Y = 8u;
+const uint SKEW_MIN_PIXELS = 8u;
+const float SKEW_LIMIT = 2.0;
 #endif

@@ -1,0 +1,89 @@
+//! `sort-grid-adaptive`'s choice of antithetic pairs: every class while the sorting keys are
+//! about symmetric, only thin classes while many classes have heavy-tailed keys.
+//!
+//! Why: pairs pin a pixel's key next to its opposite, which cancels symmetric errors better
+//! than a blue-noise mask does (direct light, every scene: README "Adaptive pairs"), but
+//! cannot cancel a heavy tail (one firefly next to the least negative error), which the mask
+//! at least spreads apart: the box at 8 bounces and 1 spp lost 0.02-0.03 of P1 with pairs
+//! everywhere. The sorting pass counts, per frame, the classes whose keys have a sample
+//! skewness |g| > SKEW_LIMIT (`SortParams::count_skew`); the gate smooths that share over
+//! frames and decides the next frame's `SortParams::pairs`.
+
+/// Pairs go to every class while the smoothed share of skewed classes is below this.
+/// Measured per frame on the bundled scenes, all cameras (README "Adaptive pairs"): direct
+/// light 0.01-0.04 on average (single frames up to 0.09), the box at 8 bounces 0.25 at 1
+/// spp (single frames from 0.10) and 0.08 at 4 spp, where pairs neither win nor lose.
+pub const PAIRS_MAX_SKEWED_SHARE: f64 = 0.1;
+
+/// Weight of the newest frame in the smoothed share: about the last 4 frames count, so one
+/// unusual frame does not flip the choice.
+pub const SKEWED_SHARE_ALPHA: f64 = 0.25;
+
+/// The smoothed share of skewed classes over the frames of one sequence.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PairsGate {
+    /// None until the first frame's counts arrive.
+    share: Option<f64>,
+}
+
+impl PairsGate {
+    /// Adds one sorting pass's (skewed classes, classes counted). A frame without counted
+    /// classes (nothing on screen, or classes under SKEW_MIN_PIXELS) leaves the share as it is.
+    pub fn update(&mut self, [skewed, counted]: [u32; 2]) {
+        if counted == 0 {
+            return;
+        }
+        let s = f64::from(skewed) / f64::from(counted);
+        self.share = Some(match self.share {
+            None => s,
+            Some(old) => old + SKEWED_SHARE_ALPHA * (s - old),
+        });
+    }
+
+    /// `SortParams::pairs` for the next sorting pass: 2 (every class) unless the keys have
+    /// been skewed, then 1 (thin classes, as the other moving-grid methods).
+    pub fn pairs(&self) -> u32 {
+        match self.share {
+            Some(s) if s >= PAIRS_MAX_SKEWED_SHARE => 1,
+            _ => 2,
+        }
+    }
+
+    /// The smoothed share so far (None before the first counted frame).
+    pub fn share(&self) -> Option<f64> {
+        self.share
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pairs_everywhere_until_the_keys_are_skewed_and_back_when_they_are_not() {
+        let mut g = PairsGate::default();
+        assert_eq!(g.pairs(), 2, "no counts yet");
+        g.update([0, 0]);
+        assert_eq!(g.share(), None, "nothing counted");
+        g.update([1, 100]);
+        assert_eq!(g.pairs(), 2);
+        g.update([40, 100]);
+        // 0.01 + 0.25 * 0.39 = 0.1075
+        assert_eq!(g.pairs(), 1);
+        for _ in 0..20 {
+            g.update([2, 100]);
+        }
+        assert_eq!(g.pairs(), 2);
+        assert!((g.share().unwrap() - 0.02).abs() < 1e-3);
+    }
+
+    #[test]
+    fn one_skewed_frame_among_symmetric_ones_does_not_flip_the_choice() {
+        let mut g = PairsGate::default();
+        for _ in 0..10 {
+            g.update([3, 100]);
+        }
+        g.update([20, 100]);
+        assert_eq!(g.pairs(), 2);
+    }
+}
