@@ -9,6 +9,8 @@ use blueshift_device::{
 };
 
 #[cfg(test)]
+mod adaptive;
+#[cfg(test)]
 mod bindings;
 #[cfg(test)]
 mod blue;

@@ -221,6 +221,10 @@ impl Renderer {
     pub fn camera(&self) -> Camera {
         self.camera
     }
+    /// `sort-grid-adaptive`'s smoothed share of skewed classes and its choice of pairs.
+    pub fn pairs_gate(&self) -> PairsGate {
+        self.pairs_gate
+    }
     pub fn device(&self) -> &Device {
         &self.dev
     }
