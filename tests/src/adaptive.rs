@@ -42,7 +42,7 @@ fn the_pairs_gate_pairs_direct_light_everywhere_and_not_8_bounces_at_1_spp() {
     );
     assert_eq!(
         (direct.pairs_gate().pairs(), multi.pairs_gate().pairs()),
-        (2, 1)
+        (2, 0)
     );
     multi.reset().unwrap();
     assert_eq!(multi.pairs_gate().share(), None, "reset keeps old counts");

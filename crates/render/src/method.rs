@@ -49,8 +49,8 @@ pub enum Method {
     /// minus its surface's mean key over earlier frames, an estimate of the seed's error.
     SortGridHistory,
     /// Ours: `SortGridHistory` with antithetic pairs in every class while the sorting keys are
-    /// about symmetric, and in thin classes only while many classes have heavy-tailed keys
-    /// (counted by the sorting pass; `PairsGate`).
+    /// about symmetric, and in none (the mask everywhere) while many classes have heavy-tailed
+    /// keys (counted by the sorting pass; `PairsGate`).
     SortGridAdaptive,
     /// Evaluation only: `SortGridHistory`'s passes, but the sorting pass ranks each pixel's
     /// exact luminance error against the frame's reference (`permute/oracle_key`). No

@@ -1,13 +1,14 @@
-//! `sort-grid-adaptive`'s choice of antithetic pairs: every class while the sorting keys are
-//! about symmetric, only thin classes while many classes have heavy-tailed keys.
+//! `sort-grid-adaptive`'s choice of antithetic pairs: in every class while the sorting keys are
+//! about symmetric, in none while many classes have heavy-tailed keys.
 //!
 //! Why: pairs pin a pixel's key next to its opposite, which cancels symmetric errors better
-//! than a blue-noise mask does (direct light, every scene: README "Adaptive pairs"), but
-//! cannot cancel a heavy tail (one firefly next to the least negative error), which the mask
-//! at least spreads apart: the box at 8 bounces and 1 spp lost 0.02-0.03 of P1 with pairs
-//! everywhere. The sorting pass counts, per frame, the classes whose keys have a sample
-//! skewness |g| > SKEW_LIMIT (`SortParams::count_skew`); the gate smooths that share over
-//! frames and decides the next frame's `SortParams::pairs`.
+//! than a blue-noise mask does (direct light, every bundled scene: README "Adaptive pairs"),
+//! but cannot cancel a heavy tail (one firefly next to the least negative error), which the
+//! mask at least spreads apart: on the box at 8 bounces and 1 spp, pairs in every class lost
+//! 0.02-0.03 of P1 against pairs in thin classes, and no pairs at all won 0.005-0.016. The
+//! sorting pass counts, per frame, the classes whose keys have a sample skewness
+//! |g| > SKEW_LIMIT (`SortParams::count_skew`); the gate smooths that share over frames and
+//! decides the next frame's `SortParams::pairs`.
 
 /// Pairs go to every class while the smoothed share of skewed classes is below this.
 /// Measured per frame on the bundled scenes, all cameras (README "Adaptive pairs"): direct
@@ -41,10 +42,10 @@ impl PairsGate {
     }
 
     /// `SortParams::pairs` for the next sorting pass: 2 (every class) unless the keys have
-    /// been skewed, then 1 (thin classes, as the other moving-grid methods).
+    /// been skewed, then 0 (the mask everywhere, thin classes included).
     pub fn pairs(&self) -> u32 {
         match self.share {
-            Some(s) if s >= PAIRS_MAX_SKEWED_SHARE => 1,
+            Some(s) if s >= PAIRS_MAX_SKEWED_SHARE => 0,
             _ => 2,
         }
     }
@@ -69,7 +70,7 @@ mod tests {
         assert_eq!(g.pairs(), 2);
         g.update([40, 100]);
         // 0.01 + 0.25 * 0.39 = 0.1075
-        assert_eq!(g.pairs(), 1);
+        assert_eq!(g.pairs(), 0);
         for _ in 0..20 {
             g.update([2, 100]);
         }
