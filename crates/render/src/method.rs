@@ -240,8 +240,8 @@ impl Method {
     }
 
     /// Which classes rank against antithetic pairs (`SortParams::pairs`): thin ones for the
-    /// moving grid, every one for `SortGridPairs`, none otherwise (`SortGridAdaptive`: the
-    /// thin ones here, `PairsGate` chooses per frame).
+    /// moving grid, every one for `SortGridPairs`, none otherwise. `SortGridAdaptive` takes
+    /// `PairsGate::pairs` instead (the renderer asks `adapts_pairs` first).
     pub fn pairs(self) -> u32 {
         match self {
             Method::SortGridPairs => 2,

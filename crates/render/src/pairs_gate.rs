@@ -2,8 +2,8 @@
 //! about symmetric, in none while many classes have heavy-tailed keys.
 //!
 //! Why: pairs pin a pixel's key next to its opposite, which cancels symmetric errors better
-//! than a blue-noise mask does (direct light, every bundled scene: README "Adaptive pairs"),
-//! but cannot cancel a heavy tail (one firefly next to the least negative error), which the
+//! than a blue-noise mask does (direct light on the box and the edges scene: README "Pairs
+//! where the errors are symmetric"), but cannot cancel a heavy tail (one firefly next to the least negative error), which the
 //! mask at least spreads apart: on the box at 8 bounces and 1 spp, pairs in every class lost
 //! 0.02-0.03 of P1 against pairs in thin classes, and no pairs at all won 0.005-0.016. The
 //! sorting pass counts, per frame, the classes whose keys have a sample skewness
@@ -11,9 +11,10 @@
 //! decides the next frame's `SortParams::pairs`.
 
 /// Pairs go to every class while the smoothed share of skewed classes is below this.
-/// Measured per frame on the bundled scenes, all cameras (README "Adaptive pairs"): direct
-/// light 0.01-0.04 on average (single frames up to 0.09), the box at 8 bounces 0.25 at 1
-/// spp (single frames from 0.10) and 0.08 at 4 spp, where pairs neither win nor lose.
+/// Smoothed shares over frames 8-47 on the bundled scenes, all cameras, 1 and 4 spp: the box
+/// and the edges scene in direct light at most 0.042, the box at 8 bounces and 1 spp at least
+/// 0.127; the textured scene 0.007-0.138 and the box at 8 bounces and 4 spp 0.037-0.190 fall
+/// either side, where neither choice wins everywhere.
 pub const PAIRS_MAX_SKEWED_SHARE: f64 = 0.1;
 
 /// Weight of the newest frame in the smoothed share: about the last 4 frames count, so one
