@@ -29,7 +29,7 @@ struct BrdfInput {
     vec3 specular_color;  // its F0 tint
 };
 
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+float luminance(vec3 c) { return dot(c, vec3(REC709_LUMA_R, REC709_LUMA_G, REC709_LUMA_B)); }
 
 vec3 fresnel_schlick(vec3 f0, float cos_theta) {
     float m = 1.0 - clamp(cos_theta, 0.0, 1.0);

@@ -7,6 +7,7 @@
 // crates/permute/src/oracle.rs oracle_key_cpu.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#include "generated/params.glsl"
 #include "generated/motion.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -20,7 +21,7 @@ void main() {
     uint at = q.y * p.width + q.x;
     vec3 c = estimate[at].rgb;
     // Rec.709 luminance, summed left to right as in the twin (no contraction into FMAs).
-    precise float y = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    precise float y = REC709_LUMA_R * c.r + REC709_LUMA_G * c.g + REC709_LUMA_B * c.b;
     precise float error = y - reference[at];
     estimate[at].w = error;
 }

@@ -5,9 +5,10 @@ use std::path::Path;
 
 use crate::{Error, Result};
 
-/// Rec.709 luminance of linear RGB: `Y = 0.2126 R + 0.7152 G + 0.0722 B`.
+/// Rec.709 luminance of linear RGB: `Y = 0.2126 R + 0.7152 G + 0.0722 B`
+/// (`blueshift_layout::REC709_LUMA`, shared with the shaders).
 pub fn luminance(rgb: [f32; 3]) -> f32 {
-    0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+    blueshift_layout::luminance(rgb)
 }
 
 /// A grayscale image, row-major: pixel `(x, y)` is `data[y * w + x]`.

@@ -28,6 +28,9 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("DIMS_PER_BOUNCE", params::DIMS_PER_BOUNCE)
                 .constant("TRACE_GROUP_X", params::TRACE_GROUP_X)
                 .constant("TRACE_GROUP_Y", params::TRACE_GROUP_Y)
+                .constant_f32("REC709_LUMA_R", blueshift_layout::REC709_LUMA[0])
+                .constant_f32("REC709_LUMA_G", blueshift_layout::REC709_LUMA[1])
+                .constant_f32("REC709_LUMA_B", blueshift_layout::REC709_LUMA[2])
                 .constant("SKEW_MIN_PIXELS", params::SKEW_MIN_PIXELS)
                 .constant_f32("SKEW_LIMIT", params::SKEW_LIMIT)
                 .render("params"),

@@ -9,6 +9,18 @@
 pub mod motion;
 pub mod params;
 
+/// Rec.709 luma weights of linear RGB: every luminance in Blueshift (the metrics' `Y`, the
+/// sorting key, the BRDF's lobe weights, the oracle's error) uses these, in GLSL as
+/// `REC709_LUMA_R/G/B` of the generated params header.
+pub const REC709_LUMA: [f32; 3] = [0.2126, 0.7152, 0.0722];
+
+/// Rec.709 luminance of linear RGB, summed left to right (the order the GLSL twins use where
+/// they must agree bit for bit).
+#[inline]
+pub fn luminance(rgb: [f32; 3]) -> f32 {
+    REC709_LUMA[0] * rgb[0] + REC709_LUMA[1] * rgb[1] + REC709_LUMA[2] * rgb[2]
+}
+
 /// A Rust type with a GLSL spelling under scalar block layout.
 ///
 /// Only 4-byte-aligned types are listed: glam's `Vec4`/`Mat4` are 16-byte aligned SIMD types

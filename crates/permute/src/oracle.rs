@@ -82,7 +82,6 @@ impl OracleKeys {
 /// luminance minus `reference`, with the shader's operations in its order.
 pub fn oracle_key_cpu(estimate: &mut [[f32; 4]], reference: &[f32]) {
     for (e, r) in estimate.iter_mut().zip(reference) {
-        let y = 0.2126f32 * e[0] + 0.7152 * e[1] + 0.0722 * e[2];
-        e[3] = y - r;
+        e[3] = blueshift_layout::luminance([e[0], e[1], e[2]]) - r;
     }
 }

@@ -94,7 +94,7 @@ pub(crate) fn dot(a: Vec3, b: Vec3) -> f32 {
 /// Rec. 709 luminance of linear RGB.
 #[inline]
 pub(crate) fn luminance(c: Vec3) -> f32 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+    blueshift_layout::luminance(c.to_array())
 }
 
 /// sRGB-encoded 8-bit value to linear.

@@ -73,6 +73,9 @@ const uint MASK_DIMS = 9u;
 const uint DIMS_PER_BOUNCE = 7u;
 const uint TRACE_GROUP_X = 8u;
 const uint TRACE_GROUP_Y = 8u;
+const float REC709_LUMA_R = 0.2126;
+const float REC709_LUMA_G = 0.7152;
+const float REC709_LUMA_B = 0.0722;
 const uint SKEW_MIN_PIXELS = 8u;
 const float SKEW_LIMIT = 2.0;
 #endif
