@@ -11,7 +11,7 @@ pub const VIEW_METHODS: [Method; 10] = [
     Method::Sort,
     Method::SortRetarget,
     Method::SortRetargetPlus,
-    Method::SortGrid,
+    Method::SortGridAdaptive,
     Method::SortGridPlus,
     Method::Hbo19,
 ];
