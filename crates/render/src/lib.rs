@@ -386,11 +386,7 @@ impl Renderer {
                 let next = mask_offset(self.frame + 1, shift, n);
                 let grid = grid_offset(self.frame + 1, block);
                 SortParams {
-                    pairs: if m.adapts_pairs() {
-                        self.pairs_gate.pairs()
-                    } else {
-                        m.pairs()
-                    },
+                    pairs: m.pairs(&self.pairs_gate),
                     phase: pair_phase(self.frame + 1, m.hashes_pair_phase()),
                     count_skew: u32::from(m.adapts_pairs()),
                     ..self.screen.sort_params_on_grid(block, next, grid)?

@@ -240,10 +240,11 @@ impl Method {
     }
 
     /// Which classes rank against antithetic pairs (`SortParams::pairs`): thin ones for the
-    /// moving grid, every one for `SortGridPairs`, none otherwise. `SortGridAdaptive` takes
-    /// `PairsGate::pairs` instead (the renderer asks `adapts_pairs` first).
-    pub fn pairs(self) -> u32 {
+    /// moving grid, every one for `SortGridPairs`, what `gate` chose from the sequence's
+    /// counts so far for `SortGridAdaptive`, none otherwise.
+    pub fn pairs(self, gate: &crate::PairsGate) -> u32 {
         match self {
+            Method::SortGridAdaptive => gate.pairs(),
             Method::SortGridPairs => 2,
             m if m.shifts_grid() => 1,
             _ => 0,
