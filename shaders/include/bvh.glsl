@@ -39,10 +39,11 @@
 #ifndef BVH_GLSL
 #define BVH_GLSL
 
-// A statement run at the top of every loop iteration; the trace shader counts llvmpipe's
-// loop iterations with it (trace_body.glsl). Empty by default.
+// A statement run at the top of every loop iteration, given the loop's TRACE_LOOP_* id (the
+// params header); the trace shader counts llvmpipe's loop iterations with it
+// (trace_body.glsl). Empty by default.
 #ifndef BVH_LOOP_TICK
-#define BVH_LOOP_TICK
+#define BVH_LOOP_TICK(loop)
 #endif
 
 #ifdef BVH_FROM_BUFFERS
@@ -154,12 +155,12 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
     float stack_t[BVH_STACK_SIZE];
     uint sp = 0u;
     while (true) {
-        BVH_LOOP_TICK;
+        BVH_LOOP_TICK(TRACE_LOOP_CLOSEST_HIT);
         // An interior node: step to the nearer child hit (pushing the farther one).
         bool pop = false;
         if (count == 0u) {
             do {
-                BVH_LOOP_TICK;
+                BVH_LOOP_TICK(TRACE_LOOP_CLOSEST_DESCEND);
                 vec3 lmin, lmax, rmin, rmax;
                 uint lfirst, lcount, rfirst, rcount;
                 bvh_load_children(first, lmin, lmax, lfirst, lcount, rmin, rmax, rfirst,
@@ -185,7 +186,7 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
         if (count > 0u && !pop) {
             uint i = first, end = first + count;
             do {
-                BVH_LOOP_TICK;
+                BVH_LOOP_TICK(TRACE_LOOP_CLOSEST_LEAF);
                 float t, u, v;
                 if (bvh_intersect_triangle(ray, bvh_load_triangle(i), hit.t, t, u, v) &&
                     (t < hit.t || i < hit.triangle)) {
@@ -203,7 +204,7 @@ bool bvh_closest_hit(Ray ray, out Hit hit) {
             bool found = false;
             if (sp > 0u) {
                 do {
-                    BVH_LOOP_TICK;
+                    BVH_LOOP_TICK(TRACE_LOOP_CLOSEST_POP);
                     sp--;
                     if (stack_t[sp] <= hit.t * BVH_TFAR_SCALE) {
                         first = stack[sp] >> BVH_COUNT_BITS;
@@ -234,11 +235,11 @@ bool bvh_occluded(Ray ray) {
     uint node = 0u, leaf_first = 0u, leaf_count = 0u, leaf_skip = 0u;
     bool occluded = false;
     do {
-        BVH_LOOP_TICK;
+        BVH_LOOP_TICK(TRACE_LOOP_OCCLUSION);
         leaf_count = 0u;  // no leaf reached yet
         bool walk = true;
         do {
-            BVH_LOOP_TICK;
+            BVH_LOOP_TICK(TRACE_LOOP_OCCLUSION_WALK);
             vec3 bmin, bmax;
             uint first, count, skip;
             bvh_load_node(node, bmin, bmax, first, count, skip);
@@ -254,7 +255,7 @@ bool bvh_occluded(Ray ray) {
         if (leaf_count > 0u) {
             uint i = leaf_first, end = leaf_first + leaf_count;
             do {
-                BVH_LOOP_TICK;
+                BVH_LOOP_TICK(TRACE_LOOP_OCCLUSION_LEAF);
                 float t, u, v;
                 if (bvh_intersect_triangle(ray, bvh_load_triangle(i), ray.tmax, t, u, v)) {
                     occluded = true;

@@ -122,7 +122,7 @@ vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
     uint lo = 0u, hi = g_light_count - 1u;
     if (lo < hi) {
         do {  // first light with u.x < cdf (bottom-tested: see trace_paths)
-            LOOP_TICK;
+            LOOP_TICK(TRACE_LOOP_LIGHT_CHOICE);
             uint mid = (lo + hi) / 2u;
             if (u.x < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
         } while (lo < hi);
@@ -250,7 +250,7 @@ vec3 trace_paths(uvec2 px, uint seed, uint s0, uint count) {
     // (Written without a `break` after the step: llvmpipe 22.3 computed wrong paths for the
     // form `if (path_step(..)) { ..; if (done) break; st = path_start(..); }`.)
     do {
-        LOOP_TICK;
+        LOOP_TICK(TRACE_LOOP_PATH_VERTEX);
         if (path_step(px, seed, sample_index_of(s), s, st)) {
             vec3 l = st.l;
             sum += any(isnan(l)) || any(isinf(l)) ? vec3(0.0) : l;

@@ -14,8 +14,10 @@
 //   TRACE_TEXTURES      1: material textures and uvs; 0: texture indices ignored (no textures)
 //   TRACE_LAMBERT       1: every material the triangles use has metallic = specular = 0, so
 //                       the BRDF is Lambert alone (BRDF_LAMBERT, brdf.glsl); 0: full glTF
-//   TRACE_HBO19         1: samples from hbo19_lookup_bits with the key table at binding 11
+//   TRACE_HBO19         1: samples from hbo19_lookup_bits with the key table at binding 12
 //                       (optional, default 0: sample_bits(TRACE_SAMPLER_KIND, ...))
+//   TRACE_LOOP_STATS    1: count every loop's iterations per batch and per lane
+//                       (trace/trace_loop_stats.comp; optional, default 0)
 // The variants differ only in dead code: llvmpipe runs both sides of every branch, so
 // branches that a method or scene never takes are compiled out (crates/render picks the
 // variant; see passes.rs).
@@ -54,7 +56,8 @@ layout(set = 0, binding = 8, scalar) readonly buffer Seeds { uint seeds[]; };
 layout(set = 0, binding = 9, scalar) readonly buffer Mask { uint mask[]; };
 layout(set = 0, binding = 10, scalar) buffer Estimate { vec4 estimate[]; };
 // [0]: the most loop iterations any SIMD batch ran in this frame (atomicMax; the host zeroes
-// it before the pass and turns values near llvmpipe's limit into an error).
+// it before the pass and turns values near llvmpipe's limit into an error); from
+// TRACE_STATUS_LOOPS on, the loop statistics (TRACE_LOOP_STATS).
 layout(set = 0, binding = 11, scalar) buffer Status { uint trace_status[]; };
 
 // llvmpipe's loop limiter: one counter per SIMD batch (subgroup), shared by all loops, that
@@ -66,9 +69,25 @@ layout(set = 0, binding = 11, scalar) buffer Status { uint trace_status[]; };
 // the bundled scenes; that exact tick cost about 10% of the pass's CPU time, this about 2-3%).
 // Hence the renderer's guard sits well below the limit (TRACE_LOOP_GUARD).
 uint g_loop_ticks;
-#define LOOP_TICK g_loop_ticks++
+#ifndef TRACE_LOOP_STATS
+#define TRACE_LOOP_STATS 0
+#endif
+#if TRACE_LOOP_STATS
+// Loop statistics (trace/trace_loop_stats.comp; TraceLoop in Rust): per loop, the iterations
+// this lane ran and those its batch ran (one elected lane counts each iteration of the batch),
+// added to trace_status at the end of main. The counting itself costs time: timings come from
+// the other variants.
+uint g_lane_iterations[TRACE_LOOP_COUNT];
+uint g_batch_iterations[TRACE_LOOP_COUNT];
+#define LOOP_TICK(loop) \
+    g_loop_ticks++; \
+    g_lane_iterations[loop]++; \
+    if (subgroupElect()) g_batch_iterations[loop]++
+#else
+#define LOOP_TICK(loop) g_loop_ticks++
+#endif
 #define LOOP_SYNC g_loop_ticks = subgroupMax(g_loop_ticks)
-#define BVH_LOOP_TICK LOOP_TICK
+#define BVH_LOOP_TICK(loop) LOOP_TICK(loop)
 
 #include "scene_texels.glsl"
 #include "bvh.glsl"
@@ -80,11 +99,28 @@ uint g_loop_ticks;
 #include "textures.glsl"
 #include "path.glsl"
 
+#if TRACE_LOOP_STATS
+// Adds the batch's `value` (the same in every lane) to the 64-bit count at trace_status[word]
+// (low word first): a wrapping add carries into the high word.
+void status_add64(uint word, uint value) {
+    if (subgroupElect()) {
+        uint old = atomicAdd(trace_status[word], value);
+        if (old + value < old) atomicAdd(trace_status[word + 1u], 1u);
+    }
+}
+#endif
+
 void main() {
     // Uniform data first, outside control flow (no early return: it would put the rest of
     // the shader under a lane mask).
     P = pc;
     g_loop_ticks = 0u;
+#if TRACE_LOOP_STATS
+    for (uint k = 0u; k < TRACE_LOOP_COUNT; k++) {
+        g_lane_iterations[k] = 0u;
+        g_batch_iterations[k] = 0u;
+    }
+#endif
     g_light_count = scene.light_count;
     g_environment = scene.environment;
     g_albedo0 = vec3(1.0);
@@ -116,4 +152,10 @@ void main() {
     if (inside && keep != -1) estimate[o] = vec4(l, luminance(l / albedo));
     uint ticks = subgroupMax(g_loop_ticks);
     if (subgroupElect()) atomicMax(trace_status[0], ticks);
+#if TRACE_LOOP_STATS
+    for (uint k = 0u; k < TRACE_LOOP_COUNT; k++) {
+        status_add64(TRACE_STATUS_LOOPS + 4u * k, subgroupAdd(g_lane_iterations[k]));
+        status_add64(TRACE_STATUS_LOOPS + 4u * k + 2u, subgroupAdd(g_batch_iterations[k]));
+    }
+#endif
 }

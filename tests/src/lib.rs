@@ -25,6 +25,8 @@ mod headers;
 #[cfg(test)]
 mod history;
 #[cfg(test)]
+mod loop_stats;
+#[cfg(test)]
 mod motion;
 #[cfg(test)]
 mod oracle;

@@ -3,7 +3,7 @@
 use crate::GpuOpts;
 use crate::render::{SceneArgs, config, load_assets, load_scene};
 use anyhow::{Result, bail};
-use blueshift_render::{LLVMPIPE_LOOP_LIMIT, Renderer};
+use blueshift_render::{LLVMPIPE_LOOP_LIMIT, LoopStats, RenderConfig, Renderer, TraceLoop};
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
@@ -14,6 +14,11 @@ pub struct BenchArgs {
     pub frames: u32,
     #[arg(long, default_value = "white")]
     pub method: String,
+    /// Also render the same frames with the loop-counting shader and print, per loop of the
+    /// path tracer, its share of the SIMD batches' iterations and how many lanes were busy
+    /// in them (the timings come from the normal shader).
+    #[arg(long)]
+    pub loop_stats: bool,
 }
 
 pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
@@ -76,7 +81,57 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     if cfg.bounces == 0 {
         println!("primary rays: {:.3} Mrays/s", samples / median / 1e3);
     }
+    if a.loop_stats {
+        let cfg = RenderConfig {
+            loop_stats: true,
+            ..cfg
+        };
+        let mut r = Renderer::new(&dev, &scene, &assets, cfg)?;
+        r.render_frame()?; // the warm-up frame, as above
+        let mut loops = LoopStats::default();
+        for _ in 0..a.frames {
+            if let Some(l) = r.render_frame()?.loops {
+                loops.add(&l);
+            }
+        }
+        print_loop_stats(
+            &loops,
+            samples * f64::from(a.frames),
+            dev.info().subgroup_size,
+        );
+    }
     Ok(())
+}
+
+/// The loop table of `--loop-stats` for `samples` samples in all.
+fn print_loop_stats(loops: &LoopStats, samples: f64, width: u32) {
+    let total = loops.total();
+    let pct = |u: Option<f64>| u.map_or("-".to_string(), |u| format!("{:.1}%", 100.0 * u));
+    println!("loops of the trace pass (same frames, counting shader; SIMD batches of {width}):");
+    println!(
+        "  {:<16} {:>14} {:>12} {:>11}",
+        "loop", "batch iter. %", "per sample", "lanes busy"
+    );
+    for l in TraceLoop::ALL {
+        let c = loops.get(l);
+        println!(
+            "  {:<16} {:>14} {:>12.2} {:>11}",
+            l.name(),
+            format!(
+                "{:.1}",
+                100.0 * c.batches as f64 / total.batches.max(1) as f64
+            ),
+            c.lanes as f64 / samples,
+            pct(c.utilization(width)),
+        );
+    }
+    println!(
+        "  {:<16} {:>14} {:>12.2} {:>11}",
+        "all loops",
+        "100.0",
+        total.lanes as f64 / samples,
+        pct(total.utilization(width)),
+    );
 }
 
 /// User + system CPU time of this process (all threads, lavapipe's included), from

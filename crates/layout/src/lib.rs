@@ -127,6 +127,12 @@ impl Header {
         self.body += &format!("const uint {name} = {value}u;\n");
         self
     }
+    /// Several `uint` constants, in order.
+    pub fn constants<'a>(self, named: impl IntoIterator<Item = (&'a str, u32)>) -> Self {
+        named
+            .into_iter()
+            .fold(self, |h, (name, value)| h.constant(name, value))
+    }
     pub fn constant_i32(mut self, name: &str, value: i32) -> Self {
         self.body += &format!("const int {name} = {value};\n");
         self

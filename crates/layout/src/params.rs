@@ -167,3 +167,82 @@ pub const PRESENT_FLAG_ERROR: u32 = 2;
 pub const PRESENT_FLAG_BGRA: u32 = 4;
 /// Divider width in window pixels (split-screen).
 pub const PRESENT_DIVIDER_WIDTH: u32 = 2;
+
+/// The loops of the trace shader that its loop-statistics variant (`trace/trace_loop_stats`)
+/// counts, as `TRACE_LOOP_<NAME>` in the params header. llvmpipe runs a loop for a whole SIMD
+/// batch while any lane is still in it, so per loop the iterations the batches ran and the
+/// lanes busy in them show where divergence costs time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u32)]
+pub enum TraceLoop {
+    /// One path vertex (trace_paths).
+    PathVertex,
+    /// The binary search of the light CDF (sample_light).
+    LightChoice,
+    /// Closest hit: one descent, its leaf, one pop (the outer loop).
+    ClosestHit,
+    /// Closest hit: one interior node (both children tested).
+    ClosestDescend,
+    /// Closest hit: one triangle of a leaf.
+    ClosestLeaf,
+    /// Closest hit: one stack entry popped.
+    ClosestPop,
+    /// Occlusion: one walk to a leaf and its triangles (the outer loop).
+    Occlusion,
+    /// Occlusion: one node of the skip-link walk.
+    OcclusionWalk,
+    /// Occlusion: one triangle of a leaf.
+    OcclusionLeaf,
+}
+
+impl TraceLoop {
+    pub const ALL: [Self; 9] = [
+        Self::PathVertex,
+        Self::LightChoice,
+        Self::ClosestHit,
+        Self::ClosestDescend,
+        Self::ClosestLeaf,
+        Self::ClosestPop,
+        Self::Occlusion,
+        Self::OcclusionWalk,
+        Self::OcclusionLeaf,
+    ];
+
+    /// Lower-case name (tables, CLI output).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::PathVertex => "path vertex",
+            Self::LightChoice => "light choice",
+            Self::ClosestHit => "closest hit",
+            Self::ClosestDescend => "  descend",
+            Self::ClosestLeaf => "  leaf triangle",
+            Self::ClosestPop => "  pop",
+            Self::Occlusion => "occlusion",
+            Self::OcclusionWalk => "  walk node",
+            Self::OcclusionLeaf => "  leaf triangle",
+        }
+    }
+
+    /// The header constant, `TRACE_LOOP_<NAME>`.
+    pub fn glsl_name(self) -> &'static str {
+        match self {
+            Self::PathVertex => "TRACE_LOOP_PATH_VERTEX",
+            Self::LightChoice => "TRACE_LOOP_LIGHT_CHOICE",
+            Self::ClosestHit => "TRACE_LOOP_CLOSEST_HIT",
+            Self::ClosestDescend => "TRACE_LOOP_CLOSEST_DESCEND",
+            Self::ClosestLeaf => "TRACE_LOOP_CLOSEST_LEAF",
+            Self::ClosestPop => "TRACE_LOOP_CLOSEST_POP",
+            Self::Occlusion => "TRACE_LOOP_OCCLUSION",
+            Self::OcclusionWalk => "TRACE_LOOP_OCCLUSION_WALK",
+            Self::OcclusionLeaf => "TRACE_LOOP_OCCLUSION_LEAF",
+        }
+    }
+}
+
+/// Number of [`TraceLoop`]s.
+pub const TRACE_LOOP_COUNT: u32 = TraceLoop::ALL.len() as u32;
+/// The trace pass's status buffer (binding 11): word 0 the most loop iterations of one batch
+/// (the loop-limit guard); from word TRACE_STATUS_LOOPS, four words per [`TraceLoop`] (loop
+/// statistics variant only): lane iterations (low, high word), batch iterations (low, high).
+pub const TRACE_STATUS_LOOPS: u32 = 4;
+pub const TRACE_STATUS_WORDS: u32 = TRACE_STATUS_LOOPS + 4 * TRACE_LOOP_COUNT;

@@ -37,6 +37,9 @@ pub struct RenderConfig {
     /// triangle uses has metallic = specular = 0; same images, bit for bit). `false` keeps
     /// the full BRDF (tests, timing).
     pub lambert_variant: bool,
+    /// Trace with the loop-counting shader (`trace/trace_loop_stats`; same images, slower):
+    /// [`crate::FrameStats::loops`].
+    pub loop_stats: bool,
 }
 
 impl RenderConfig {
@@ -57,6 +60,7 @@ impl RenderConfig {
             loop_guard: TRACE_LOOP_GUARD,
             seed_map: SeedMap::Random,
             lambert_variant: true,
+            loop_stats: false,
         }
     }
 

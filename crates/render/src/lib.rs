@@ -19,6 +19,7 @@ mod camera_path;
 mod config;
 mod gbuffer;
 mod images;
+mod loop_stats;
 mod method;
 mod motion;
 mod pairs_gate;
@@ -32,6 +33,7 @@ pub use camera_path::{CameraPath, Keyframe};
 pub use config::RenderConfig;
 pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
+pub use loop_stats::{LoopCount, LoopStats};
 pub use method::{GRID_BLOCK, Method};
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
@@ -40,9 +42,11 @@ pub use seeds::{SeedMap, initial_seeds, tile_seeds};
 pub use upload::SceneBuffers;
 
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
+pub use blueshift_layout::params::TraceLoop;
 use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
-    TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
+    TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TRACE_STATUS_WORDS,
+    TraceParams,
 };
 use blueshift_permute::{
     PermutePasses, Screen, SortInput, SortParams, grid_offset, mask_offset, pair_phase,
@@ -84,6 +88,8 @@ pub struct FrameStats {
     /// The most loop iterations one SIMD batch of the trace pass ran (llvmpipe's limit:
     /// [`LLVMPIPE_LOOP_LIMIT`]).
     pub trace_loop_iterations: u32,
+    /// Per-loop iteration counts of the trace pass, with [`RenderConfig::loop_stats`].
+    pub loops: Option<LoopStats>,
 }
 
 impl FrameStats {
@@ -184,7 +190,12 @@ impl Renderer {
             current: 0,
             initial_seeds: initial,
             estimate: Buffer::new(dev, "frame.estimate", pixels * 16, host)?,
-            trace_status: Buffer::new(dev, "frame.trace_status", 16, host)?,
+            trace_status: Buffer::new(
+                dev,
+                "frame.trace_status",
+                4 * TRACE_STATUS_WORDS as u64,
+                host,
+            )?,
             dispatch_vertices: passes::TRACE_FIRST_DISPATCH_VERTICES,
             accum: Buffer::new(dev, "frame.accum", pixels * 16, host)?,
             ldr: Buffer::new(dev, "frame.ldr", pixels * 4, host)?,
@@ -377,6 +388,7 @@ impl Renderer {
             &self.estimate,
             &self.trace_status,
             self.dispatch_vertices,
+            self.cfg.loop_stats,
         )?;
         if m.sorts() {
             let block = m.block(self.cfg.block);
@@ -444,10 +456,16 @@ impl Renderer {
             let s = self.sort_stats.read::<u32>()?;
             self.pairs_gate.update([s[0], s[1]]);
         }
+        let status = self.trace_status.read::<u32>()?;
         let stats = FrameStats {
             frame: self.frame,
             passes,
-            trace_loop_iterations: self.trace_status.read::<u32>()?[0],
+            trace_loop_iterations: status[0],
+            loops: self
+                .cfg
+                .loop_stats
+                .then(|| LoopStats::from_status(&status))
+                .flatten(),
         };
         self.frame += 1;
         self.accumulated = self.accumulated.saturating_add(1);

@@ -72,11 +72,14 @@ pub struct TraceVariant {
     pub textures: bool,
     /// The Lambert-only BRDF (every material has metallic = specular = 0).
     pub lambert: bool,
+    /// Count loop iterations (`trace/trace_loop_stats*`, every choice made at run time, so the
+    /// other fields but the sampler do not apply; same paths as the other variants).
+    pub loop_stats: bool,
 }
 
 impl TraceVariant {
     /// The variant for these push constants over these scene images.
-    pub fn of(p: &TraceParams, scene: &SceneImages) -> Result<Self> {
+    pub fn of(p: &TraceParams, scene: &SceneImages, loop_stats: bool) -> Result<Self> {
         let sampler = Sampler::ALL
             .into_iter()
             .find(|&s| s as u32 == p.sampler_kind)
@@ -86,12 +89,18 @@ impl TraceVariant {
             mask: p.mask_mode != MASK_MODE_NONE,
             textures: scene.textured,
             lambert: scene.lambert,
+            loop_stats,
         })
     }
 
-    /// The shader name, `trace/variants/<sampler>[_mask][_tex][_lambert]`.
+    /// The shader name, `trace/variants/<sampler>[_mask][_tex][_lambert]`, or with loop
+    /// statistics `trace/trace_loop_stats[_hbo19]`.
     pub fn shader(self) -> String {
         let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
+        if self.loop_stats {
+            let hbo19 = self.sampler == Sampler::Hbo19;
+            return format!("trace/trace_loop_stats{}", flag(hbo19, "_hbo19"));
+        }
         format!(
             "trace/variants/{}{}{}{}",
             self.sampler.name(),
@@ -209,8 +218,9 @@ impl ImagePasses {
         estimate: &Buffer,
         status: &Buffer,
         vertices: u32,
+        loop_stats: bool,
     ) -> Result<u32> {
-        let variant = TraceVariant::of(p, images)?;
+        let variant = TraceVariant::of(p, images, loop_stats)?;
         let pipeline = self.trace_pipeline(variant)?;
         let per_dispatch = samples_per_dispatch(vertices, p.max_bounces).min(p.spp);
         for first in (0..p.spp).step_by(per_dispatch as usize) {
@@ -335,12 +345,13 @@ mod tests {
     fn every_variant_names_a_compiled_shader() {
         let names: Vec<&str> = blueshift_shaders::names().collect();
         for sampler in Sampler::ALL {
-            for bits in 0..8 {
+            for bits in 0..16 {
                 let v = TraceVariant {
                     sampler,
                     mask: bits & 1 != 0,
                     textures: bits & 2 != 0,
                     lambert: bits & 4 != 0,
+                    loop_stats: bits & 8 != 0,
                 };
                 assert!(names.contains(&v.shader().as_str()), "{v:?}");
             }

@@ -82,6 +82,27 @@ pub fn intersect_triangle(ray: &Ray, tri: &GpuTriangle, tmax: f32) -> Option<(f3
 
 /// Closest hit through the BVH.
 pub fn closest_hit(nodes: &[BvhNode], triangles: &[GpuTriangle], ray: &Ray) -> Option<Hit> {
+    closest_hit_counted(nodes, triangles, ray, &mut TraversalCounts::default())
+}
+
+/// The iterations of bvh.glsl's closest-hit loops for the rays traced so far (the shader's
+/// `TRACE_LOOP_CLOSEST_*` counts per lane): the loop over descents (one, plus one per node
+/// popped), interior nodes, triangles tested and stack entries popped.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TraversalCounts {
+    pub descents: u64,
+    pub interior: u64,
+    pub triangles: u64,
+    pub pops: u64,
+}
+
+/// [`closest_hit`], adding its loop iterations to `counts`.
+pub fn closest_hit_counted(
+    nodes: &[BvhNode],
+    triangles: &[GpuTriangle],
+    ray: &Ray,
+    counts: &mut TraversalCounts,
+) -> Option<Hit> {
     let mut hit = Hit::miss(ray);
     let root = nodes.first()?;
     let inv = safe_inverse(ray.dir);
@@ -97,9 +118,11 @@ pub fn closest_hit(nodes: &[BvhNode], triangles: &[GpuTriangle], ray: &Ray) -> O
     let mut stack_t = [0f32; BVH_STACK_SIZE as usize];
     let mut sp = 0usize;
     let mut node = 0usize;
+    counts.descents += 1;
     loop {
         let n = &nodes[node];
         if n.count > 0 {
+            counts.triangles += n.count as u64;
             for i in n.left_first..n.left_first + n.count {
                 if let Some((t, u, v)) = intersect_triangle(ray, &triangles[i as usize], hit.t)
                     && (t < hit.t || i < hit.triangle)
@@ -113,6 +136,7 @@ pub fn closest_hit(nodes: &[BvhNode], triangles: &[GpuTriangle], ray: &Ray) -> O
                 }
             }
         } else {
+            counts.interior += 1;
             let (l, r) = (n.left_first as usize, n.left_first as usize + 1);
             let (nl, nr) = (&nodes[l], &nodes[r]);
             let tl = box_entry(nl.aabb_min, nl.aabb_max, ray.origin, inv, ray.tmin, hit.t);
@@ -143,13 +167,17 @@ pub fn closest_hit(nodes: &[BvhNode], triangles: &[GpuTriangle], ray: &Ray) -> O
         let mut next = None;
         while sp > 0 {
             sp -= 1;
+            counts.pops += 1;
             if stack_t[sp] <= hit.t * BOX_TFAR_SCALE {
                 next = Some(stack[sp] as usize);
                 break;
             }
         }
         match next {
-            Some(n) => node = n,
+            Some(n) => {
+                node = n;
+                counts.descents += 1;
+            }
             None => break,
         }
     }

@@ -37,7 +37,10 @@ pub use gpu::{
     BvhNode, GpuBuffer, GpuLight, GpuMaterial, GpuTexture, GpuTriangle, Hit, Ray, SceneGpu,
     SceneInfo, TriangleShading,
 };
-pub use intersect::{closest_hit, closest_hit_brute_force, intersect_triangle, occluded};
+pub use intersect::{
+    TraversalCounts, closest_hit, closest_hit_brute_force, closest_hit_counted, intersect_triangle,
+    occluded,
+};
 pub use load::LoadOptions;
 pub use scene::{Image, Material, Scene, Texture, Triangle, Wrap};
 

@@ -78,4 +78,15 @@ const float REC709_LUMA_G = 0.7152;
 const float REC709_LUMA_B = 0.0722;
 const uint SKEW_MIN_PIXELS = 8u;
 const float SKEW_LIMIT = 2.0;
+const uint TRACE_LOOP_PATH_VERTEX = 0u;
+const uint TRACE_LOOP_LIGHT_CHOICE = 1u;
+const uint TRACE_LOOP_CLOSEST_HIT = 2u;
+const uint TRACE_LOOP_CLOSEST_DESCEND = 3u;
+const uint TRACE_LOOP_CLOSEST_LEAF = 4u;
+const uint TRACE_LOOP_CLOSEST_POP = 5u;
+const uint TRACE_LOOP_OCCLUSION = 6u;
+const uint TRACE_LOOP_OCCLUSION_WALK = 7u;
+const uint TRACE_LOOP_OCCLUSION_LEAF = 8u;
+const uint TRACE_LOOP_COUNT = 9u;
+const uint TRACE_STATUS_LOOPS = 4u;
 #endif

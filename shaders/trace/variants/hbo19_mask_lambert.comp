@@ -1,5 +1,5 @@
 #version 460
-// Path-tracer variant: sampler hbo19 (keys from binding 11),
+// Path-tracer variant: sampler hbo19 (keys from binding 12),
 // blue-noise mask on, textures off, Lambert BRDF only.
 // See ../trace_body.glsl.
 #define TRACE_SAMPLER_KIND SAMPLER_HBO19

@@ -1,5 +1,5 @@
 #version 460
-// Path-tracer variant: sampler hbo19 (keys from binding 11), blue-noise mask on, textures on.
+// Path-tracer variant: sampler hbo19 (keys from binding 12), blue-noise mask on, textures on.
 // See ../trace_body.glsl.
 #define TRACE_SAMPLER_KIND SAMPLER_HBO19
 #define TRACE_HBO19 1

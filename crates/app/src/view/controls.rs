@@ -247,6 +247,7 @@ mod tests {
                 })
                 .collect(),
             trace_loop_iterations: 0,
+            loops: None,
         };
         let mut s = settings();
         s.apply(Action::ToggleAccumulation);
