@@ -246,3 +246,20 @@ pub const TRACE_LOOP_COUNT: u32 = TraceLoop::ALL.len() as u32;
 /// statistics variant only): lane iterations (low, high word), batch iterations (low, high).
 pub const TRACE_STATUS_LOOPS: u32 = 4;
 pub const TRACE_STATUS_WORDS: u32 = TRACE_STATUS_LOOPS + 4 * TRACE_LOOP_COUNT;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shader indexes its counters by discriminant and the host reads them in `ALL` order.
+    #[test]
+    fn trace_loops_are_listed_in_discriminant_order() {
+        for (i, l) in TraceLoop::ALL.into_iter().enumerate() {
+            assert_eq!(l as usize, i, "{l:?}");
+            assert!(l.glsl_name().starts_with("TRACE_LOOP_"));
+        }
+        let names: std::collections::HashSet<_> =
+            TraceLoop::ALL.iter().map(|l| l.glsl_name()).collect();
+        assert_eq!(names.len(), TraceLoop::ALL.len());
+    }
+}
