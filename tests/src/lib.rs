@@ -39,6 +39,14 @@ mod sampling;
 #[cfg(test)]
 mod trace;
 
+/// Whether two RGBA images are equal bit for bit.
+pub fn same_bits(a: &[[f32; 4]], b: &[[f32; 4]]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(p, q)| p.map(f32::to_bits) == q.map(f32::to_bits))
+}
+
 /// A validated device plus a recorder. Panics on drop if validation reported anything.
 pub struct Gpu {
     instance: Instance,

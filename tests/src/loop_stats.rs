@@ -1,6 +1,6 @@
 //! The loop-counting trace shader (`RenderConfig::loop_stats`, `blueshift bench --loop-stats`):
 //! its counts agree with the CPU traversal's, and it renders what the other variants render.
-use crate::Gpu;
+use crate::{Gpu, same_bits};
 use blueshift_render::{
     LoopStats, Method, MethodAssets, RenderConfig, Renderer, TraceLoop, default_assets_dir,
 };
@@ -110,9 +110,7 @@ fn loop_stats_shader_renders_the_same_image() {
         assert_eq!((counted_a, counted_b), (vec![false; 2], vec![true; 2]));
         assert!(a.iter().any(|p| p[0] > 0.0), "{method}: black image");
         assert!(
-            a.iter()
-                .zip(&b)
-                .all(|(p, q)| p.map(f32::to_bits) == q.map(f32::to_bits)),
+            same_bits(&a, &b),
             "{method}: the counting shader renders another image"
         );
     }

@@ -1,7 +1,7 @@
 //! End-to-end path-tracer properties on lavapipe: energy conservation (white furnace), an
 //! emitter seen directly returns its radiance, the seed buffer stays a permutation, and the
 //! loop-limit guard reports.
-use crate::Gpu;
+use crate::{Gpu, same_bits};
 use blueshift_render::{
     Method, MethodAssets, RenderConfig, RenderError, Renderer, TRACE_LOOP_GUARD, default_assets_dir,
 };
@@ -284,11 +284,6 @@ fn lambert_variant_matches_the_full_brdf() {
         };
         let (a, b) = (render(true), render(false));
         assert!(a.iter().any(|p| p[0] > 0.0), "{method}: black image");
-        assert!(
-            a.iter()
-                .zip(&b)
-                .all(|(p, q)| p.map(f32::to_bits) == q.map(f32::to_bits)),
-            "{method}: Lambert variant differs"
-        );
+        assert!(same_bits(&a, &b), "{method}: Lambert variant differs");
     }
 }

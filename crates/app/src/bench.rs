@@ -116,7 +116,7 @@ fn print_loop_stats(loops: &LoopStats, samples: f64, width: u32) {
         let c = loops.get(l);
         println!(
             "  {:<16} {:>14} {:>12.2} {:>11}",
-            l.name(),
+            format!("{}{}", if l.nested() { "  " } else { "" }, l.name()),
             format!(
                 "{:.1}",
                 100.0 * c.batches as f64 / total.batches.max(1) as f64

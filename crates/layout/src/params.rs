@@ -214,13 +214,20 @@ impl TraceLoop {
             Self::PathVertex => "path vertex",
             Self::LightChoice => "light choice",
             Self::ClosestHit => "closest hit",
-            Self::ClosestDescend => "  descend",
-            Self::ClosestLeaf => "  leaf triangle",
-            Self::ClosestPop => "  pop",
+            Self::ClosestDescend => "descend",
+            Self::ClosestLeaf | Self::OcclusionLeaf => "leaf triangle",
+            Self::ClosestPop => "pop",
             Self::Occlusion => "occlusion",
-            Self::OcclusionWalk => "  walk node",
-            Self::OcclusionLeaf => "  leaf triangle",
+            Self::OcclusionWalk => "walk node",
         }
+    }
+
+    /// Whether the loop runs inside the closest-hit or occlusion loop listed before it.
+    pub fn nested(self) -> bool {
+        !matches!(
+            self,
+            Self::PathVertex | Self::LightChoice | Self::ClosestHit | Self::Occlusion
+        )
     }
 
     /// The header constant, `TRACE_LOOP_<NAME>`.

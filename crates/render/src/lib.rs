@@ -17,31 +17,33 @@
 mod assets;
 mod camera_path;
 mod config;
+mod error;
 mod gbuffer;
 mod images;
-mod loop_stats;
 mod method;
 mod motion;
 mod pairs_gate;
 mod passes;
 mod readback;
 mod seeds;
+mod stats;
 mod upload;
 
 pub use assets::{MethodAssets, default_assets_dir};
 pub use camera_path::{CameraPath, Keyframe};
 pub use config::RenderConfig;
+pub use error::{RenderError, Result};
 pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
-pub use loop_stats::{LoopCount, LoopStats};
 pub use method::{GRID_BLOCK, Method};
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
 pub use passes::{LLVMPIPE_LOOP_LIMIT, TRACE_BINDINGS, TRACE_LOOP_GUARD, TraceVariant};
 pub use seeds::{SeedMap, initial_seeds, tile_seeds};
+pub use stats::{FrameStats, LoopCount, LoopStats};
 pub use upload::SceneBuffers;
 
-use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
+use blueshift_device::{Buffer, Device, MemoryLocation, Recorder};
 pub use blueshift_layout::params::TraceLoop;
 use blueshift_layout::params::{
     ImageParams, MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
@@ -54,54 +56,6 @@ use blueshift_permute::{
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use passes::ImagePasses;
 use seeds::{key_words, seeds_of};
-
-/// Errors of the renderer.
-#[derive(Debug, thiserror::Error)]
-pub enum RenderError {
-    #[error(transparent)]
-    Device(#[from] blueshift_device::DeviceError),
-    #[error(transparent)]
-    Permute(#[from] blueshift_permute::PermuteError),
-    #[error("scene: {0}")]
-    Scene(String),
-    #[error("asset: {0}")]
-    Asset(String),
-    #[error("{0}")]
-    Invalid(String),
-    /// A SIMD batch of the trace pass ran `iterations` loop iterations, at or over the guard
-    /// below llvmpipe's silent limit: some paths may have been cut short.
-    #[error(
-        "lavapipe loop limit: a batch of the trace pass ran {iterations} loop iterations \
-         (guard {guard}, llvmpipe silently ends loops at 65535), so some paths may be cut \
-         short; lower --spp per frame or scene complexity"
-    )]
-    LoopLimit { iterations: u32, guard: u32 },
-}
-
-pub type Result<T, E = RenderError> = std::result::Result<T, E>;
-
-/// Per-pass GPU times of one frame.
-#[derive(Debug, Clone, Default)]
-pub struct FrameStats {
-    pub frame: u64,
-    pub passes: Vec<PassTime>,
-    /// The most loop iterations one SIMD batch of the trace pass ran (llvmpipe's limit:
-    /// [`LLVMPIPE_LOOP_LIMIT`]).
-    pub trace_loop_iterations: u32,
-    /// Per-loop iteration counts of the trace pass, with [`RenderConfig::loop_stats`].
-    pub loops: Option<LoopStats>,
-}
-
-impl FrameStats {
-    /// Milliseconds of the pass named `name` (0 if it did not run).
-    pub fn ms(&self, name: &str) -> f64 {
-        self.passes
-            .iter()
-            .filter(|p| p.name == name)
-            .map(|p| p.ms)
-            .sum()
-    }
-}
 
 /// The renderer: scene on the device, seed buffers, images, passes.
 pub struct Renderer {

@@ -1,7 +1,32 @@
-//! Loop statistics of the trace pass ([`crate::RenderConfig::loop_stats`]). llvmpipe runs a
-//! loop for a whole SIMD batch while any of its lanes is still in it, so the iterations the
-//! batches ran, against the lane iterations in them, measure what divergence costs per loop.
+//! What a frame reports: GPU time per pass, the trace pass's loop-limit count and, with
+//! [`crate::RenderConfig::loop_stats`], its loop statistics. llvmpipe runs a loop for a whole
+//! SIMD batch while any of its lanes is still in it, so the iterations the batches ran, against
+//! the lane iterations in them, measure what divergence costs per loop.
+use blueshift_device::PassTime;
 use blueshift_layout::params::{TRACE_STATUS_LOOPS, TRACE_STATUS_WORDS, TraceLoop};
+
+/// Per-pass GPU times of one frame.
+#[derive(Debug, Clone, Default)]
+pub struct FrameStats {
+    pub frame: u64,
+    pub passes: Vec<PassTime>,
+    /// The most loop iterations one SIMD batch of the trace pass ran (llvmpipe's limit:
+    /// [`crate::LLVMPIPE_LOOP_LIMIT`]).
+    pub trace_loop_iterations: u32,
+    /// Per-loop iteration counts of the trace pass, with [`crate::RenderConfig::loop_stats`].
+    pub loops: Option<LoopStats>,
+}
+
+impl FrameStats {
+    /// Milliseconds of the pass named `name` (0 if it did not run).
+    pub fn ms(&self, name: &str) -> f64 {
+        self.passes
+            .iter()
+            .filter(|p| p.name == name)
+            .map(|p| p.ms)
+            .sum()
+    }
+}
 
 /// Iterations of one loop, summed over a frame.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
