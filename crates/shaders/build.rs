@@ -1,4 +1,6 @@
-//! Compiles every `shaders/**/*.comp` of the workspace to SPIR-V (Vulkan 1.2) with shaderc.
+//! Compiles every `shaders/**/*.comp` of the workspace, and every variant of
+//! `blueshift_layout::variants` (a `.glsl` body with `#define`s before it), to SPIR-V
+//! (Vulkan 1.2) with shaderc.
 //! `#include "x.glsl"` resolves next to the including file, then in `shaders/include/`.
 //! Errors fail the build with `file:line: message` lines from glslang.
 use blueshift_shaderc_link as shaderc;
@@ -33,16 +35,35 @@ fn main() {
     let mut files = Vec::new();
     collect(&root, &mut files);
 
-    let compiler = shaderc::Compiler::new().expect("shaderc compiler");
-    let mut failed = Vec::new();
-    let mut table = String::from(
-        "/// (name, SPIR-V bytes) of every compiled shader.\npub static SHADERS: &[(&str, &[u8])] = &[\n",
-    );
+    // (name, source, file name for messages and includes): the hand-written shaders, then the
+    // variants generated from blueshift-layout's list.
+    let mut sources: Vec<(String, String, PathBuf)> = Vec::new();
     for file in &files {
         println!("cargo:rerun-if-changed={}", file.display());
         let rel = file.strip_prefix(&root).expect("under root");
         let name = rel.with_extension("").to_string_lossy().replace('\\', "/");
         let source = std::fs::read_to_string(file).expect("readable shader");
+        sources.push((name, source, file.clone()));
+    }
+    for v in blueshift_layout::variants::shader_variants() {
+        let body = root.join(v.body);
+        let mut source = String::from("#version 460\n");
+        for (key, value) in &v.defines {
+            writeln!(source, "#define {key} {value}").expect("string");
+        }
+        let file_name = body.file_name().expect("a file").to_string_lossy();
+        writeln!(source, "#include \"{file_name}\"").expect("string");
+        // Named as if it sat next to its body, so that includes resolve from there.
+        let file = body.with_file_name(format!("{}.comp", v.name.rsplit('/').next().expect("name")));
+        sources.push((v.name, source, file));
+    }
+
+    let compiler = shaderc::Compiler::new().expect("shaderc compiler");
+    let mut failed = Vec::new();
+    let mut table = String::from(
+        "/// (name, SPIR-V bytes) of every compiled shader.\npub static SHADERS: &[(&str, &[u8])] = &[\n",
+    );
+    for (name, source, file) in &sources {
         let mut opts = shaderc::CompileOptions::new().expect("shaderc options");
         opts.set_target_env(
             shaderc::TargetEnv::Vulkan,
@@ -65,7 +86,7 @@ fn main() {
             Err(format!("cannot find include \"{requested}\" (searched next to {requester} and in shaders/include)"))
         });
         match compiler.compile_into_spirv(
-            &source,
+            source,
             shaderc::ShaderKind::Compute,
             &file.to_string_lossy(),
             "main",
@@ -81,7 +102,7 @@ fn main() {
                 )
                 .expect("string");
             }
-            Err(e) => failed.push(e.to_string()),
+            Err(e) => failed.push(format!("{name}: {e}")),
         }
     }
     table.push_str("];\n");

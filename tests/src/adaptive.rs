@@ -13,7 +13,7 @@ fn share_after_frames(gpu: &Gpu, bounces: u32) -> (Renderer, f64) {
     let cfg = RenderConfig {
         spp: 1,
         bounces,
-        method: Method::SortGridAdaptive,
+        method: Method::SORT_GRID_ADAPTIVE,
         // Pixel centres, as `eval`: with anti-aliasing jitter a seed's error at an edge is
         // its coverage of the edge, a heavy tail that turns the pairs off in direct light too.
         no_jitter: true,

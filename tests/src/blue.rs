@@ -65,7 +65,7 @@ fn sort_retarget_error_is_bluer_than_white_with_the_same_rmse() {
     // Reference: Owen-Sobol, 512 spp (its own error is ~1/22 of the 1-spp error: negligible).
     let reference = crate::cornell_reference(&gpu, &scene, &assets, W);
     let white = run(&gpu, &scene, &assets, Method::White, &reference);
-    let blue = run(&gpu, &scene, &assets, Method::SortRetarget, &reference);
+    let blue = run(&gpu, &scene, &assets, Method::SORT_RETARGET, &reference);
     eprintln!(
         "white: LF {:.4} RMSE {:.4} P1 {:.4}; sort-retarget: LF {:.4} RMSE {:.4} P1 {:.4}",
         white.lf, white.rmse, white.p1, blue.lf, blue.rmse, blue.p1

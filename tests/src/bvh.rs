@@ -91,11 +91,11 @@ fn check(gpu: &mut Gpu, name: &str, scene: &Scene, n: u32) {
     gpu.run(
         &p,
         &[
-            (&nodes).into(),
-            (&tris).into(),
-            (&rb).into(),
-            (&hits).into(),
-            (&occ).into(),
+            ("bvh_nodes", (&nodes).into()),
+            ("bvh_triangles", (&tris).into()),
+            ("rays", (&rb).into()),
+            ("hits", (&hits).into()),
+            ("occluded", (&occ).into()),
         ],
         bytemuck::bytes_of(&count),
         [groups_for(count, 64), 1, 1],

@@ -1,4 +1,4 @@
-//! The demodulated sorting key (`sort-retarget-demod`, `sort-retarget-plus`): the image is the
+//! The demodulated sorting key (`key=demod`, and history keys): the image is the
 //! same as without it, and the key is the estimate over the primary hit's base colour, checked
 //! against the CPU G-buffer's material per pixel (an independent traversal).
 use crate::Gpu;
@@ -34,8 +34,8 @@ fn demodulated_key_divides_by_the_primary_albedo_and_keeps_the_image() {
         r.render_frame().unwrap();
         (r.read_estimate().unwrap(), tp)
     };
-    let (plain, tp) = frame(Method::SortRetarget);
-    let (demod, _) = frame(Method::SortRetargetDemod);
+    let (plain, tp) = frame(Method::SORT_RETARGET);
+    let (demod, _) = frame("sort-retarget:key=demod".parse().unwrap());
     let g = gbuffer_cpu(&sg, &tp);
     let mut changed = 0;
     for (i, ((a, b), t)) in plain.iter().zip(&demod).zip(&g).enumerate() {

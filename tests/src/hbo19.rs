@@ -55,7 +55,7 @@ fn sort_retarget_from_hbo19_seeds_starts_at_tile_positions_and_stays_a_permutati
     let tile = assets.keys_for(1).unwrap().tile;
     let cfg = RenderConfig {
         bounces: 1,
-        method: Method::SortRetarget,
+        method: Method::SORT_RETARGET,
         seed_map: SeedMap::Hbo19,
         ..RenderConfig::new(70, 45)
     };

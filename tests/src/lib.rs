@@ -29,7 +29,6 @@ mod loop_stats;
 #[cfg(test)]
 mod motion;
 #[cfg(test)]
-mod oracle;
 #[cfg(test)]
 mod permute;
 #[cfg(test)]
@@ -98,7 +97,7 @@ impl Gpu {
     pub fn run(
         &mut self,
         pipeline: &ComputePipeline,
-        resources: &[Res<'_>],
+        resources: &[(&str, Res<'_>)],
         push: &[u8],
         groups: [u32; 3],
     ) -> Vec<PassTime> {

@@ -90,7 +90,7 @@ fn loop_stats_count_what_the_cpu_traversal_counts() {
 fn loop_stats_shader_renders_the_same_image() {
     let gpu = Gpu::new();
     let scene = cornell();
-    for method in [Method::SortRetarget, Method::Hbo19] {
+    for method in [Method::SORT_RETARGET, Method::Hbo19] {
         let render = |loop_stats| {
             let cfg = RenderConfig {
                 spp: 2,

@@ -57,7 +57,7 @@ fn random_gbuffer(w: u32, h: u32, rng: &mut Lcg) -> Vec<GBufferTexel> {
 #[test]
 fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
     let mut gpu = Gpu::new();
-    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let mut passes = PermutePasses::new(gpu.dev()).unwrap();
     let mut rng = Lcg(9);
     for (w, h, block) in [(37, 23, 2), (50, 41, 3), (64, 48, 4), (99, 61, 8)] {
         let sc = Screen::new(w, h, 16).unwrap();
@@ -109,9 +109,9 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             let stats_b = Buffer::from_slice(gpu.dev(), "motion.sort_stats", &[0u32; 2]).unwrap();
             let rec = gpu.rec.as_mut().unwrap();
             rec.begin().unwrap();
-            rec.begin_pass("classify").unwrap();
+            rec.begin_pass("classify_pixels").unwrap();
             passes.classify_pixels(rec, &p, &gb, &classes).unwrap();
-            rec.begin_pass("sort").unwrap();
+            rec.begin_pass("sort_seeds").unwrap();
             passes
                 .sort_seeds(
                     rec,
@@ -119,9 +119,10 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
                     &SortInput {
                         estimate: &est_b,
                         mask: &mask_b,
-                        classes: &classes,
-                        history: &history_b,
-                        stats: &stats_b,
+                        classes: Some(&classes),
+                        history: Some(&history_b),
+                        pairs: true,
+                        stats: Some(&stats_b),
                     },
                     &seeds,
                 )
@@ -277,7 +278,7 @@ fn gbuffer_and_motion_match_cpu() {
     let (w, h) = (61, 47);
     let cfg = RenderConfig {
         bounces: 1,
-        method: Method::SortRetargetPlus,
+        method: "sort-retarget:motion=reproject,grouping=surfaces,key=demod".parse().unwrap(),
         ..RenderConfig::new(w, h)
     };
     let mut r = Renderer::new(gpu.dev(), &scene, &assets, cfg).unwrap();
@@ -361,8 +362,8 @@ fn still_camera_reprojection_is_the_identity() {
             })
             .collect::<Vec<_>>()
     };
-    let paper = run(Method::SortRetarget);
-    let ours = run(Method::SortRetargetReproject);
+    let paper = run(Method::SORT_RETARGET);
+    let ours = run("sort-retarget:motion=reproject".parse().unwrap());
     assert_ne!(paper[0], paper[4]);
     assert_eq!(paper, ours);
 }

@@ -63,7 +63,7 @@ fn sort_params_of(sc: &Screen, block: u32, frame: u64, off: (u32, u32)) -> SortP
 #[allow(clippy::too_many_arguments)]
 fn gpu_frame(
     gpu: &mut Gpu,
-    passes: &PermutePasses,
+    passes: &mut PermutePasses,
     sc: &Screen,
     block: u32,
     frame: u64,
@@ -75,9 +75,6 @@ fn gpu_frame(
     let off = mask_offset(frame, (12, 9), sc.tile);
     let sp = sort_params_of(sc, block, frame, off);
     let est = Buffer::from_slice(gpu.dev(), "permute.estimate", &estimate(lum)).unwrap();
-    let zeros = vec![0u32; lum.len()];
-    let classes = Buffer::from_slice(gpu.dev(), "permute.classes", &zeros).unwrap();
-    let stats = Buffer::from_slice(gpu.dev(), "permute.sort_stats", &[0u32; 2]).unwrap();
     let rec = gpu.rec.as_mut().unwrap();
     rec.begin().unwrap();
     rec.begin_pass("permute.sort_seeds").unwrap();
@@ -88,9 +85,10 @@ fn gpu_frame(
             &SortInput {
                 estimate: &est,
                 mask,
-                classes: &classes,
-                history: &classes,
-                stats: &stats,
+                classes: None,
+                history: None,
+                pairs: false,
+                stats: None,
             },
             seeds[0],
         )
@@ -107,7 +105,7 @@ fn gpu_frame(
 #[test]
 fn sort_and_retarget_match_cpu_and_stay_permutations() {
     let mut gpu = Gpu::new();
-    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let mut passes = PermutePasses::new(gpu.dev()).unwrap();
     let mut rng = Lcg(42);
     for (w, h, n, block, frames) in [
         (37, 23, 16, 2, 12),
@@ -139,7 +137,7 @@ fn sort_and_retarget_match_cpu_and_stay_permutations() {
                 .collect();
             gpu_frame(
                 &mut gpu,
-                &passes,
+                &mut passes,
                 &sc,
                 block,
                 f,
@@ -180,7 +178,7 @@ fn sort_and_retarget_match_cpu_and_stay_permutations() {
 #[test]
 fn sort_identity_and_constant_image() {
     let mut gpu = Gpu::new();
-    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let mut passes = PermutePasses::new(gpu.dev()).unwrap();
     let mut rng = Lcg(5);
     let (n, block) = (16u32, 4u32);
     let sc = Screen::new(32, 32, n).unwrap();
@@ -204,7 +202,7 @@ fn sort_identity_and_constant_image() {
     .unwrap();
     gpu_frame(
         &mut gpu,
-        &passes,
+        &mut passes,
         &sc,
         block,
         3,
@@ -222,7 +220,7 @@ fn sort_identity_and_constant_image() {
     let a = Buffer::from_slice(gpu.dev(), "permute.seeds_a", &init).unwrap();
     gpu_frame(
         &mut gpu,
-        &passes,
+        &mut passes,
         &sc,
         block,
         3,
@@ -246,7 +244,7 @@ fn sort_identity_and_constant_image() {
 #[test]
 fn thousand_frames_stay_a_permutation() {
     let mut gpu = Gpu::new();
-    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let mut passes = PermutePasses::new(gpu.dev()).unwrap();
     let mut rng = Lcg(9);
     let (w, h, n) = (45u32, 29u32, 16u32);
     let sc = Screen::new(w, h, n).unwrap();
@@ -263,7 +261,7 @@ fn thousand_frames_stay_a_permutation() {
         let (src, dst) = (&bufs[(f % 2) as usize], &bufs[1 - (f % 2) as usize]);
         gpu_frame(
             &mut gpu,
-            &passes,
+            &mut passes,
             &sc,
             2 + (f % 7) as u32,
             f,

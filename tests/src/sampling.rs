@@ -40,7 +40,11 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
     let out = gpu.output::<[u32; 4]>("sampling.results", n as usize);
     gpu.run(
         &p,
-        &[(&inb).into(), (&out).into(), (&keyb).into()],
+        &[
+            ("inputs", (&inb).into()),
+            ("results", (&out).into()),
+            ("keys", (&keyb).into()),
+        ],
         bytemuck::bytes_of(&n),
         [groups_for(n, 64), 1, 1],
     );

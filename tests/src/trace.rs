@@ -3,7 +3,8 @@
 //! loop-limit guard reports.
 use crate::{Gpu, same_bits};
 use blueshift_render::{
-    Method, MethodAssets, RenderConfig, RenderError, Renderer, TRACE_LOOP_GUARD, default_assets_dir,
+    Method, MethodAssets, RenderConfig, RenderError, Renderer, TRACE_LOOP_GUARD, TraceError,
+    default_assets_dir,
 };
 use blueshift_scene::{Camera, Material, Scene, Triangle};
 use glam::{Vec2, Vec3};
@@ -194,13 +195,16 @@ fn emitter_seen_directly_returns_its_radiance() {
 }
 
 /// The renderer's seed buffer stays a permutation of the initial seeds over frames of every
-/// permuting method, at a resolution that is a multiple of neither the block nor the tile.
+/// permuting preset (and the paper's transport with every extension field), at a resolution
+/// that is a multiple of neither the block nor the tile.
 #[test]
 fn renderer_seeds_stay_a_permutation() {
     let gpu = Gpu::new();
     let dir = default_assets_dir().join("scenes/cornell-box.gltf");
     let s = Scene::load(dir).unwrap();
-    for method in Method::ALL.into_iter().filter(|m| m.sorts()) {
+    let extended = "sort-retarget:motion=reproject,grouping=surfaces,key=demod";
+    let presets = Method::PRESETS.into_iter().map(|(_, m)| m);
+    for method in presets.chain([extended.parse().unwrap()]).filter(|m| m.sorts()) {
         let cfg = RenderConfig {
             bounces: 1,
             method,
@@ -212,10 +216,6 @@ fn renderer_seeds_stay_a_permutation() {
         for f in 0..6 {
             // A pan (reprojection moves seeds off screen and back in) then a still frame.
             r.set_view_offset(((f.min(4) * 3) as f32, 0.0));
-            if method.needs_reference() {
-                let lum: Vec<f32> = (0..70 * 45).map(|i| (i % 13) as f32 * 0.05).collect();
-                r.set_reference_luminance(&lum).unwrap();
-            }
             r.render_frame().unwrap();
             assert!(blueshift_permute::is_permutation_of(
                 &r.read_seeds().unwrap(),
@@ -248,7 +248,7 @@ fn trace_loop_guard_reports_the_limit() {
     };
     let mut r = Renderer::new(gpu.dev(), &s, &assets(), tiny).unwrap();
     match r.render_frame() {
-        Err(e @ RenderError::LoopLimit { .. }) => {
+        Err(e @ RenderError::Trace(TraceError::LoopLimit { .. })) => {
             let msg = e.to_string();
             assert!(msg.contains("trace pass") && msg.contains("--spp"), "{msg}");
         }

@@ -98,7 +98,7 @@ fn smoke(dev: &Device) -> Result<()> {
     rec.begin_pass("smoke.rng")?;
     rec.dispatch(
         &pipe,
-        &[(&out).into()],
+        &[("results", (&out).into())],
         bytemuck::cast_slice(&[0u32, n]),
         [n.div_ceil(64), 1, 1],
     )?;

@@ -28,8 +28,8 @@ pub struct SoakArgs {
     /// Allowed growth of device memory in use over the baseline, bytes (allocations are exact).
     #[arg(long, default_value_t = 0)]
     pub device_tolerance: u64,
-    /// A method that permutes seeds (`sort`, `sort-retarget` or any `sort-*`; not
-    /// `sort-grid-oracle`, which needs references).
+    /// A method that permutes seeds (`sort`, `sort-retarget`, a `sort-grid-*` preset or a
+    /// spelled-out `sort:...` form).
     #[arg(long, default_value = "sort-retarget")]
     pub method: String,
 }

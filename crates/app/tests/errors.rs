@@ -266,7 +266,7 @@ fn validation_layers_not_installed() {
 #[test]
 fn device_lost_names_the_pass() {
     let c = Case::new();
-    for pass in ["trace", "retarget"] {
+    for pass in ["trace", "retarget_seeds"] {
         let o = c.render(&[], &[("BLUESHIFT_TEST_DEVICE_LOST", pass)]);
         c.expect_error(
             &o,
@@ -289,10 +289,10 @@ fn out_of_memory_names_the_resource_or_the_passes() {
         ],
     );
     // A submission the driver could not run: the error lists the passes in it.
-    let o = c.render(&[], &[("BLUESHIFT_TEST_SUBMIT_OOM", "sort")]);
+    let o = c.render(&[], &[("BLUESHIFT_TEST_SUBMIT_OOM", "sort_seeds")]);
     c.expect_error(
         &o,
-        &["out of memory while running pass(es)", "trace", "sort"],
+        &["out of memory while running pass(es)", "trace", "sort_seeds"],
     );
 }
 
@@ -301,8 +301,8 @@ fn other_bad_arguments_are_errors_not_panics() {
     let c = Case::new();
     let o = c.render(&["--method", "nope"], &[]);
     c.expect_error(&o, &["unknown method 'nope'", "sort-retarget"]);
-    let o = c.render(&["--method", "sort-grid-oracle"], &[]);
-    c.expect_error(&o, &["sort-grid-oracle", "only `blueshift eval` runs it"]);
+    let o = c.render(&["--method", "sort:key=history"], &[]);
+    c.expect_error(&o, &["sort:key=history", "needs motion=reproject"]);
     let o = c.render(&["--sampler", "nope"], &[]);
     c.expect_error(&o, &["unknown sampler 'nope'"]);
     let o = c.render_sized(("8", "8"), "0", &[], &[]);

@@ -226,23 +226,39 @@ impl Recorder {
         }
     }
 
-    /// Binds `resources` (in the pipeline's declared binding order), pushes constants and
-    /// dispatches `groups` workgroups, followed by a barrier.
+    /// The device this recorder records for.
+    pub fn device(&self) -> &Device {
+        &self.dev
+    }
+
+    /// Binds `resources` by name (the names the pipeline's shader declares, checked at pipeline
+    /// creation; every binding exactly once), pushes constants and dispatches `groups`
+    /// workgroups, followed by a barrier.
     pub fn dispatch(
         &mut self,
         pipeline: &ComputePipeline,
-        resources: &[Res<'_>],
+        resources: &[(&str, Res<'_>)],
         push: &[u8],
         groups: [u32; 3],
     ) -> Result<()> {
         self.check_recording()?;
         let usage = |d: String| DeviceError::Usage(format!("dispatch of '{}': {d}", pipeline.name));
-        if resources.len() != pipeline.bindings.len() {
-            return Err(usage(format!(
-                "{} resources given, {} bindings declared",
-                resources.len(),
-                pipeline.bindings.len()
-            )));
+        if let Some((name, _)) = resources
+            .iter()
+            .find(|(n, _)| !pipeline.bindings.iter().any(|b| b.name == *n))
+        {
+            return Err(usage(format!("the shader has no resource named '{name}'")));
+        }
+        let mut ordered = Vec::with_capacity(pipeline.bindings.len());
+        for b in &pipeline.bindings {
+            let mut given = resources.iter().filter(|(n, _)| *n == b.name);
+            match (given.next(), given.next()) {
+                (Some((_, r)), None) => ordered.push(*r),
+                (None, _) => return Err(usage(format!("nothing bound to '{}'", b.name))),
+                (Some(_), Some(_)) => {
+                    return Err(usage(format!("'{}' bound more than once", b.name)));
+                }
+            }
         }
         if push.len() as u32 != pipeline.push_size {
             return Err(usage(format!(
@@ -259,7 +275,7 @@ impl Recorder {
         }
         let mut buffer_infos = Vec::new();
         let mut image_infos = Vec::new();
-        for (b, r) in pipeline.bindings.iter().zip(resources) {
+        for (b, r) in pipeline.bindings.iter().zip(&ordered) {
             match (b.kind, r) {
                 (BindingKind::StorageBuffer | BindingKind::UniformBuffer, Res::Buffer(buf)) => {
                     buffer_infos.push(vk::DescriptorBufferInfo {

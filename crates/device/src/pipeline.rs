@@ -1,11 +1,15 @@
 //! Compute pipelines whose declared bindings are checked against the SPIR-V.
 //!
-//! Every pass declares its bindings explicitly (set 0, binding number, kind). At creation the
-//! declaration is compared with what the SPIR-V itself declares, so a shader/host mismatch is an
-//! error naming the shader, set and binding instead of garbage on screen.
+//! Every pass declares its bindings explicitly (set 0, binding number, kind, and the name the
+//! GLSL gives the resource). At creation the declaration is compared with what the SPIR-V
+//! itself declares, names included, so a shader/host mismatch (two buffers of one kind swapped
+//! included) is an error naming the shader, set and binding instead of garbage on screen.
+//! Dispatches then bind resources by those names ([`crate::Recorder::dispatch`]).
 use crate::device::Device;
 use crate::error::{DeviceError, Result, VkContext};
 use ash::vk;
+use rspirv_reflect::rspirv::dr::{Module, Operand};
+use rspirv_reflect::spirv::Op;
 use rspirv_reflect::{BindingCount, DescriptorType, Reflection};
 
 /// The kind of resource at a binding.
@@ -39,7 +43,8 @@ impl BindingKind {
 pub struct Binding {
     pub binding: u32,
     pub kind: BindingKind,
-    /// What the host calls it (used in error messages).
+    /// The resource's name in the shader: the variable's, or for a block without an instance
+    /// name its first member's (`buffer Seeds { uint seeds[]; }` is `seeds`).
     pub name: &'static str,
 }
 
@@ -71,7 +76,7 @@ impl Binding {
 /// What the SPIR-V declares, as used by the check.
 #[derive(Debug, Clone)]
 pub struct ShaderInterface {
-    /// (set, binding, kind or None for an unsupported kind, variable name)
+    /// (set, binding, kind or None for an unsupported kind, name as in [`Binding::name`])
     pub bindings: Vec<(u32, u32, Option<BindingKind>, String)>,
     pub push_constant_size: u32,
     pub workgroup_size: (u32, u32, u32),
@@ -99,7 +104,8 @@ pub fn reflect(shader: &str, spirv: &[u32]) -> Result<ShaderInterface> {
                     detail: "arrays of descriptors are not supported (no descriptor indexing on lavapipe)".into(),
                 });
             }
-            bindings.push((set, binding, BindingKind::from_reflect(info.ty), info.name));
+            let name = resource_name(&refl.0, set, binding).unwrap_or(info.name);
+            bindings.push((set, binding, BindingKind::from_reflect(info.ty), name));
         }
     }
     let push_constant_size = refl
@@ -112,6 +118,60 @@ pub fn reflect(shader: &str, spirv: &[u32]) -> Result<ShaderInterface> {
         push_constant_size,
         workgroup_size,
     })
+}
+
+/// Whether operand `at` of `i` is the id `id`.
+fn operand_is(i: &rspirv_reflect::rspirv::dr::Instruction, at: usize, id: u32) -> bool {
+    matches!(i.operands.get(at), Some(Operand::IdRef(x)) if *x == id)
+}
+
+/// The name of the resource at (set, binding): the variable's OpName, else (an anonymous block)
+/// the OpMemberName of its block's first member.
+fn resource_name(m: &Module, set: u32, binding: u32) -> Option<String> {
+    let decorated = |id: u32, d: rspirv_reflect::spirv::Decoration, v: u32| {
+        m.annotations.iter().any(|a| {
+            operand_is(a, 0, id)
+                && matches!(a.operands.get(1), Some(Operand::Decoration(x)) if *x == d)
+                && matches!(a.operands.get(2), Some(Operand::LiteralBit32(x)) if *x == v)
+        })
+    };
+    use rspirv_reflect::spirv::Decoration;
+    let var = m.types_global_values.iter().find(|i| {
+        i.class.opcode == Op::Variable
+            && i.result_id.is_some_and(|id| {
+                decorated(id, Decoration::DescriptorSet, set) && decorated(id, Decoration::Binding, binding)
+            })
+    })?;
+    let id = var.result_id?;
+    let string = |i: &rspirv_reflect::rspirv::dr::Instruction, at: usize| match i.operands.get(at) {
+        Some(Operand::LiteralString(s)) if !s.is_empty() => Some(s.clone()),
+        _ => None,
+    };
+    let named = m
+        .debug_names
+        .iter()
+        .find(|i| i.class.opcode == Op::Name && operand_is(i, 0, id))
+        .and_then(|i| string(i, 1));
+    if named.is_some() {
+        return named;
+    }
+    let pointer = var.result_type?;
+    let block = m
+        .types_global_values
+        .iter()
+        .find(|i| i.class.opcode == Op::TypePointer && i.result_id == Some(pointer))
+        .and_then(|i| match i.operands.get(1) {
+            Some(Operand::IdRef(t)) => Some(*t),
+            _ => None,
+        })?;
+    m.debug_names
+        .iter()
+        .find(|i| {
+            i.class.opcode == Op::MemberName
+                && operand_is(i, 0, block)
+                && matches!(i.operands.get(1), Some(Operand::LiteralBit32(0)))
+        })
+        .and_then(|i| string(i, 2))
 }
 
 /// Compares a declaration with the reflected interface; the first difference is the error.
@@ -142,6 +202,16 @@ pub fn check_bindings(
                 format!("shader declares '{var}' but the host declares nothing there"),
             ));
         };
+        if *var != decl.name {
+            return Err(mismatch(
+                0,
+                *binding,
+                format!(
+                    "the shader names it '{var}', the pass binds '{}' there",
+                    decl.name
+                ),
+            ));
+        }
         if *kind != Some(decl.kind) {
             return Err(mismatch(
                 0,

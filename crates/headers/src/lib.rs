@@ -44,7 +44,6 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .push::<motion::GBufferTexel>()
                 .push::<motion::MotionParams>()
                 .push::<motion::HistoryParams>()
-                .push::<motion::OracleParams>()
                 .constant("REPROJECT_NONE", motion::REPROJECT_NONE)
                 .constant("HISTORY_MIN_FRAMES", motion::HISTORY_MIN_FRAMES)
                 .constant("HISTORY_MAX_FRAMES", motion::HISTORY_MAX_FRAMES)

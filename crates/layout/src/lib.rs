@@ -8,9 +8,10 @@
 
 pub mod motion;
 pub mod params;
+pub mod variants;
 
 /// Rec.709 luma weights of linear RGB: every luminance in Blueshift (the metrics' `Y`, the
-/// sorting key, the BRDF's lobe weights, the oracle's error) uses these, in GLSL as
+/// sorting key, the BRDF's lobe weights) uses these, in GLSL as
 /// `REC709_LUMA_R/G/B` of the generated params header.
 pub const REC709_LUMA: [f32; 3] = [0.2126, 0.7152, 0.0722];
 

@@ -64,16 +64,6 @@ gpu_struct! {
     }
 }
 
-gpu_struct! {
-    /// Push constants of `permute/oracle_key` (`sort-grid-oracle`, evaluation only): each
-    /// visible pixel's sorting key becomes its luminance error against the frame's reference.
-    pub struct OracleParams {
-        /// Visible screen: the estimate and the reference are W*H.
-        pub width: u32,
-        pub height: u32,
-    }
-}
-
 /// `HistoryParams::min_frames`, `max_frames` and `radius` of `sort-grid-history` (README,
 /// "History keys": single-pixel histories of one or two frames made pans worse; with the 3x3
 /// window a minimum of 4 frames beat 8 on pans, a maximum of 16 frames lost to 64 under

@@ -1,30 +1,48 @@
 //! The GPU passes: `permute/classify_pixels`, `permute/sort_seeds` and
 //! `permute/retarget_seeds` (seed reprojection: reproject_gpu.rs).
 use crate::{PermuteError, Result, RetargetParams, SortParams};
-use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder};
+use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder, Res};
+pub use blueshift_layout::variants::SortVariant;
 
-/// What the sorting pass ranks, and where it counts skewed classes.
+/// What the sorting pass ranks, and where it counts skewed classes. The optional inputs
+/// select the pass's variant: the paper's sorting has none of them.
 #[derive(Debug, Clone, Copy)]
 pub struct SortInput<'a> {
     /// vec4 (rgb, sorting key) per visible pixel.
     pub estimate: &'a Buffer,
     /// The N*N mask ranks.
     pub mask: &'a Buffer,
-    /// One u32 per visible pixel (zeros: the paper's method; else classify_pixels).
-    pub classes: &'a Buffer,
-    /// One f32 per visible pixel subtracted from the key (zeros: the raw key; else
-    /// history_key's means, NaN for the class mean in the block).
-    pub history: &'a Buffer,
+    /// One u32 per visible pixel from classify_pixels; `None`: one class per block.
+    pub classes: Option<&'a Buffer>,
+    /// One f32 per visible pixel subtracted from the key (history_key's means, NaN for the
+    /// class mean in the block); `None`: the raw key.
+    pub history: Option<&'a Buffer>,
+    /// Whether `SortParams::pairs` may ask for antithetic pairs.
+    pub pairs: bool,
     /// Two u32 the pass adds (skewed classes, classes counted) to when
     /// `SortParams::count_skew` is set; the caller zeroes them (`sort_seeds_cpu` returns the
-    /// same counts).
-    pub stats: &'a Buffer,
+    /// same counts). `None`: no counting.
+    pub stats: Option<&'a Buffer>,
+}
+
+impl SortInput<'_> {
+    /// The sorting pass's variant for this input.
+    pub fn variant(&self) -> SortVariant {
+        SortVariant {
+            classes: self.classes.is_some(),
+            history: self.history.is_some(),
+            pairs: self.pairs,
+            skew: self.stats.is_some(),
+        }
+    }
 }
 
 /// Pipelines of both permutation passes.
 pub struct PermutePasses {
+    dev: Device,
     classify: ComputePipeline,
-    sort: ComputePipeline,
+    /// Sorting-pass variants created so far.
+    sort: Vec<(SortVariant, ComputePipeline)>,
     retarget: ComputePipeline,
 }
 
@@ -45,19 +63,6 @@ fn pipeline(
 
 impl PermutePasses {
     pub fn new(dev: &Device) -> Result<Self> {
-        let sort = pipeline(
-            dev,
-            "permute/sort_seeds",
-            &[
-                Binding::storage(0, "estimate"),
-                Binding::storage(1, "mask"),
-                Binding::storage(2, "seeds"),
-                Binding::storage(3, "classes"),
-                Binding::storage(4, "history"),
-                Binding::storage(5, "stats"),
-            ],
-            std::mem::size_of::<SortParams>(),
-        )?;
         let classify = pipeline(
             dev,
             "permute/classify_pixels",
@@ -78,33 +83,60 @@ impl PermutePasses {
             std::mem::size_of::<RetargetParams>(),
         )?;
         Ok(Self {
+            dev: dev.clone(),
             classify,
-            sort,
+            sort: Vec::new(),
             retarget,
         })
     }
 
-    /// Records the sorting pass (in place on `seeds`).
+    /// The sorting pipeline of `v`, created on first use.
+    fn sort_pipeline(&mut self, v: SortVariant) -> Result<&ComputePipeline> {
+        let i = match self.sort.iter().position(|(x, _)| *x == v) {
+            Some(i) => i,
+            None => {
+                let mut bindings = vec![
+                    Binding::storage(0, "estimate"),
+                    Binding::storage(1, "mask"),
+                    Binding::storage(2, "seeds"),
+                ];
+                let optional = [
+                    (v.classes, Binding::storage(3, "classes")),
+                    (v.history, Binding::storage(4, "hist_mean")),
+                    (v.skew, Binding::storage(5, "sort_stats")),
+                ];
+                bindings.extend(optional.into_iter().filter(|(on, _)| *on).map(|(_, b)| b));
+                let push = std::mem::size_of::<SortParams>();
+                let p = pipeline(&self.dev, &v.shader(), &bindings, push)?;
+                self.sort.push((v, p));
+                self.sort.len() - 1
+            }
+        };
+        Ok(&self.sort[i].1)
+    }
+
+    /// Records the sorting pass (in place on `seeds`), in the variant `input` asks for.
     pub fn sort_seeds(
-        &self,
+        &mut self,
         rec: &mut Recorder,
         p: &SortParams,
         input: &SortInput,
         seeds: &Buffer,
     ) -> Result<()> {
-        rec.dispatch(
-            &self.sort,
-            &[
-                input.estimate.into(),
-                input.mask.into(),
-                seeds.into(),
-                input.classes.into(),
-                input.history.into(),
-                input.stats.into(),
-            ],
-            bytemuck::bytes_of(p),
-            block_groups(p)?,
-        )?;
+        let mut resources: Vec<(&str, Res)> = vec![
+            ("estimate", input.estimate.into()),
+            ("mask", input.mask.into()),
+            ("seeds", seeds.into()),
+        ];
+        let optional = [
+            ("classes", input.classes),
+            ("hist_mean", input.history),
+            ("sort_stats", input.stats),
+        ];
+        resources.extend(optional.into_iter().filter_map(|(n, b)| Some((n, b?.into()))));
+        let groups = block_groups(p)?;
+        let pipeline = self.sort_pipeline(input.variant())?;
+        rec.dispatch(pipeline, &resources, bytemuck::bytes_of(p), groups)?;
         Ok(())
     }
 
@@ -119,7 +151,7 @@ impl PermutePasses {
     ) -> Result<()> {
         rec.dispatch(
             &self.classify,
-            &[gbuffer.into(), classes.into()],
+            &[("gbuffer", gbuffer.into()), ("classes", classes.into())],
             bytemuck::bytes_of(p),
             block_groups(p)?,
         )?;
@@ -138,7 +170,11 @@ impl PermutePasses {
         let groups = [p.padded_width.div_ceil(8), p.padded_height.div_ceil(8), 1];
         rec.dispatch(
             &self.retarget,
-            &[table.into(), seeds_in.into(), seeds_out.into()],
+            &[
+                ("table", table.into()),
+                ("seeds_in", seeds_in.into()),
+                ("seeds_out", seeds_out.into()),
+            ],
             bytemuck::bytes_of(p),
             groups,
         )?;

@@ -69,12 +69,12 @@ impl HistoryKeys {
         rec.dispatch(
             &self.pass,
             &[
-                estimate.into(),
-                src.into(),
-                hin.into(),
-                hout.into(),
-                (&self.mean).into(),
-                gbuffer.into(),
+                ("estimate", estimate.into()),
+                ("src", src.into()),
+                ("hist_in", hin.into()),
+                ("hist_out", hout.into()),
+                ("hist_mean", (&self.mean).into()),
+                ("gbuffer", gbuffer.into()),
             ],
             bytemuck::bytes_of(p),
             [p.width.div_ceil(8), p.height.div_ceil(8), 1],

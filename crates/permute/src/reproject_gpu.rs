@@ -80,7 +80,11 @@ impl Reprojection {
         let groups = [p.padded_width.div_ceil(8), p.padded_height.div_ceil(8), 1];
         rec.dispatch(
             &self.motion_pass,
-            &[prev.into(), cur.into(), (&self.src).into()],
+            &[
+                ("prev", prev.into()),
+                ("cur", cur.into()),
+                ("src", (&self.src).into()),
+            ],
             bytemuck::bytes_of(p),
             groups,
         )?;
@@ -102,41 +106,35 @@ impl Reprojection {
         rec.fill_buffer(&self.holes, REPROJECT_NONE)?;
         rec.fill_buffer(&self.rows, 0)?;
         rec.fill_buffer(&self.motion, 0)?;
-        let (src, claim) = (Res::from(&self.src), Res::from(&self.claim));
+        let src = ("src", Res::from(&self.src));
+        let claim = ("claim", Res::from(&self.claim));
+        let rows = ("rows", Res::from(&self.rows));
+        let holes = ("holes", Res::from(&self.holes));
+        let leftovers = ("leftovers", Res::from(&self.leftovers));
+        let (seeds_in, seeds_out) = (("seeds_in", seeds_in.into()), ("seeds_out", seeds_out.into()));
         rec.dispatch(&self.claim_pass, &[src, claim], push, pixels)?;
         rec.dispatch(
             &self.gather_pass,
             &[
                 src,
                 claim,
-                seeds_in.into(),
-                seeds_out.into(),
-                (&self.rows).into(),
-                (&self.motion).into(),
+                seeds_in,
+                seeds_out,
+                rows,
+                ("motion", (&self.motion).into()),
             ],
             push,
             pixels,
         )?;
         rec.dispatch(
             &self.fill_pass,
-            &[
-                src,
-                claim,
-                (&self.rows).into(),
-                (&self.holes).into(),
-                (&self.leftovers).into(),
-            ],
+            &[src, claim, rows, holes, leftovers],
             push,
             [p.padded_height.div_ceil(64), 1, 1],
         )?;
         rec.dispatch(
             &self.scatter_pass,
-            &[
-                (&self.holes).into(),
-                (&self.leftovers).into(),
-                seeds_in.into(),
-                seeds_out.into(),
-            ],
+            &[holes, leftovers, seeds_in, seeds_out],
             push,
             pixels,
         )?;

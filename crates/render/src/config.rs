@@ -29,7 +29,7 @@ pub struct RenderConfig {
     /// Primary rays through pixel centres (no anti-aliasing jitter).
     pub no_jitter: bool,
     /// A frame whose trace pass ran this many loop iterations in one SIMD batch is an error
-    /// ([`RenderError::LoopLimit`]); default [`TRACE_LOOP_GUARD`].
+    /// (`TraceError::LoopLimit`); default [`TRACE_LOOP_GUARD`].
     pub loop_guard: u32,
     /// The seed map of frame 0 (the `hbo19` method always uses [`SeedMap::Hbo19`]).
     pub seed_map: SeedMap,
@@ -49,7 +49,7 @@ impl RenderConfig {
             height,
             spp: 1,
             bounces: 8,
-            method: Method::SortRetarget,
+            method: Method::SORT_RETARGET,
             block: 4,
             sampler: None,
             frame_salt: false,

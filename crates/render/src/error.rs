@@ -7,20 +7,13 @@ pub enum RenderError {
     Device(#[from] blueshift_device::DeviceError),
     #[error(transparent)]
     Permute(#[from] blueshift_permute::PermuteError),
-    #[error("scene: {0}")]
-    Scene(String),
+    /// The trace pass: a scene over the device's limits, or the loop guard.
+    #[error(transparent)]
+    Trace(#[from] blueshift_trace::TraceError),
     #[error("asset: {0}")]
     Asset(String),
     #[error("{0}")]
     Invalid(String),
-    /// A SIMD batch of the trace pass ran `iterations` loop iterations, at or over the guard
-    /// below llvmpipe's silent limit: some paths may have been cut short.
-    #[error(
-        "lavapipe loop limit: a batch of the trace pass ran {iterations} loop iterations \
-         (guard {guard}, llvmpipe silently ends loops at 65535), so some paths may be cut \
-         short; lower --spp per frame or scene complexity"
-    )]
-    LoopLimit { iterations: u32, guard: u32 },
 }
 
 pub type Result<T, E = RenderError> = std::result::Result<T, E>;

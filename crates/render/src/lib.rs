@@ -8,7 +8,7 @@
 //! let dev = blueshift_device::headless(false, None)?;
 //! let scene = blueshift_scene::Scene::load("assets/scenes/cornell-box.gltf")?;
 //! let assets = MethodAssets::load(&default_assets_dir())?;
-//! let cfg = RenderConfig { method: Method::SortRetarget, ..RenderConfig::new(256, 256) };
+//! let cfg = RenderConfig { method: Method::SORT_RETARGET, ..RenderConfig::new(256, 256) };
 //! let mut r = Renderer::new(&dev, &scene, &assets, cfg)?;
 //! for _ in 0..16 { r.render_frame()?; }
 //! let image = r.read_ldr()?;
@@ -18,30 +18,28 @@ mod assets;
 mod camera_path;
 mod config;
 mod error;
-mod gbuffer;
-mod images;
+mod image;
 mod method;
+mod method_spec;
 mod motion;
 mod pairs_gate;
-mod passes;
 mod readback;
 mod seeds;
 mod stats;
-mod upload;
 
 pub use assets::{MethodAssets, default_assets_dir};
 pub use camera_path::{CameraPath, Keyframe};
 pub use config::RenderConfig;
 pub use error::{RenderError, Result};
-pub use gbuffer::{GBufferPass, gbuffer_cpu};
-pub use images::SceneImages;
-pub use method::{GRID_BLOCK, Method};
+pub use method::{GRID_BLOCK, Grouping, Key, Method, Motion, Pairs, Permutation, Transport};
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
-pub use passes::{LLVMPIPE_LOOP_LIMIT, TRACE_BINDINGS, TRACE_LOOP_GUARD, TraceVariant};
 pub use seeds::{SeedMap, initial_seeds, tile_seeds};
 pub use stats::{FrameStats, LoopCount, LoopStats};
-pub use upload::SceneBuffers;
+pub use blueshift_trace::{
+    GBufferPass, LLVMPIPE_LOOP_LIMIT, SceneBuffers, SceneImages, TRACE_LOOP_GUARD, TraceError,
+    TraceVariant, gbuffer_cpu,
+};
 
 use blueshift_device::{Buffer, Device, MemoryLocation, Recorder};
 pub use blueshift_layout::params::TraceLoop;
@@ -54,8 +52,21 @@ use blueshift_permute::{
     PermutePasses, Screen, SortInput, SortParams, grid_offset, mask_offset, pair_phase,
 };
 use blueshift_scene::{Camera, Scene, SceneGpu};
-use passes::ImagePasses;
+use blueshift_trace::TracePass;
+use image::ImagePasses;
 use seeds::{key_words, seeds_of};
+
+/// Timing labels of every pass a permutation method adds to the path tracer, in frame order:
+/// their sum against `trace` is the method's overhead.
+pub const PERMUTE_PASSES: [&str; 7] = [
+    "gbuffer",
+    "reproject_motion",
+    "reproject_seeds",
+    "history_key",
+    "classify_pixels",
+    "sort_seeds",
+    "retarget_seeds",
+];
 
 /// The renderer: scene on the device, seed buffers, images, passes.
 pub struct Renderer {
@@ -64,6 +75,7 @@ pub struct Renderer {
     screen: Screen,
     scene: SceneBuffers,
     images: SceneImages,
+    trace: TracePass,
     image: ImagePasses,
     permute: PermutePasses,
     rec: Recorder,
@@ -87,18 +99,12 @@ pub struct Renderer {
     view_offset: (f32, f32),
     frame: u64,
     accumulated: u32,
-    /// All-zero surface classes: the paper's sorting (one class per block). Also the sorting
-    /// pass's history means for methods without history keys (zero bits are 0.0: raw keys).
-    zero_classes: Buffer,
     /// (skewed classes, classes counted) of the last sorting pass (`SortInput::stats`).
     sort_stats: Buffer,
     /// `sort-grid-adaptive`'s choice of pairs from the counts so far in this sequence.
     pairs_gate: PairsGate,
     /// G-buffers and reprojection state, created when a method first needs them.
     motion: Option<motion::MotionState>,
-    /// `sort-grid-oracle`'s pass, and the frame its reference luminance was set for (taken
-    /// by that frame: a reference never serves two frames, nor survives a reset).
-    oracle: Option<(blueshift_permute::OracleKeys, Option<u64>)>,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -120,8 +126,7 @@ impl Renderer {
         cfg.validate(dev)?;
         let gpu_scene = SceneGpu::build(scene);
         let scene_buffers = SceneBuffers::new(dev, &gpu_scene)?;
-        let image_passes = ImagePasses::new(dev)?;
-        let mut scene_images = SceneImages::new(dev, &image_passes, &gpu_scene)?;
+        let mut scene_images = SceneImages::new(dev, &gpu_scene)?;
         scene_images.lambert &= cfg.lambert_variant;
         let screen = Screen::new(cfg.width, cfg.height, assets.n)?;
         let initial = seeds_of(&cfg, &screen, assets)?;
@@ -137,7 +142,8 @@ impl Renderer {
             screen,
             scene: scene_buffers,
             images: scene_images,
-            image: image_passes,
+            trace: TracePass::new(dev),
+            image: ImagePasses::new(dev)?,
             permute: PermutePasses::new(dev)?,
             rec: Recorder::new(dev, "frame")?,
             seeds,
@@ -150,7 +156,7 @@ impl Renderer {
                 4 * TRACE_STATUS_WORDS as u64,
                 host,
             )?,
-            dispatch_vertices: passes::TRACE_FIRST_DISPATCH_VERTICES,
+            dispatch_vertices: blueshift_trace::TRACE_FIRST_DISPATCH_VERTICES,
             accum: Buffer::new(dev, "frame.accum", pixels * 16, host)?,
             ldr: Buffer::new(dev, "frame.ldr", pixels * 4, host)?,
             mask: Buffer::from_slice(dev, "assets.mask", &assets.mask)?,
@@ -163,15 +169,9 @@ impl Renderer {
             view_offset: (0.0, 0.0),
             frame: 0,
             accumulated: 0,
-            zero_classes: Buffer::from_slice(
-                dev,
-                "frame.classes.zero",
-                &vec![0u32; pixels as usize],
-            )?,
             sort_stats: Buffer::new(dev, "frame.sort_stats", 8, host)?,
             pairs_gate: PairsGate::default(),
             motion: None,
-            oracle: None,
             cfg,
         };
         Ok(r)
@@ -331,7 +331,7 @@ impl Renderer {
         self.rec.begin()?;
         self.rec.fill_buffer(&self.trace_status, 0)?;
         self.rec.begin_pass("trace")?;
-        let per_dispatch = self.image.trace(
+        let per_dispatch = self.trace.trace(
             &mut self.rec,
             &tp,
             &self.scene,
@@ -361,32 +361,27 @@ impl Renderer {
                 self.screen.sort_params(block, off)?
             };
             self.record_history_keys()?;
-            self.record_oracle_keys()?;
             self.record_classes(&tp, &sp)?;
             if sp.count_skew != 0 {
                 self.rec.fill_buffer(&self.sort_stats, 0)?;
             }
-            self.rec.begin_pass("sort")?;
-            let classes = match (&self.motion, m.edge_aware()) {
-                (Some(st), true) => &st.classes,
-                _ => &self.zero_classes,
-            };
-            let history = match self.motion.as_ref().and_then(|st| st.history_mean()) {
-                Some(h) if m.history_keys() => h,
-                _ => &self.zero_classes,
-            };
+            self.rec.begin_pass("sort_seeds")?;
+            let motion = self.motion.as_ref();
             let input = SortInput {
                 estimate: &self.estimate,
                 mask: &self.mask,
-                classes,
-                history,
-                stats: &self.sort_stats,
+                classes: motion.filter(|_| m.edge_aware()).map(|st| &st.classes),
+                history: motion
+                    .and_then(|st| st.history_mean())
+                    .filter(|_| m.history_keys()),
+                pairs: m.permutation().is_some_and(|p| p.pairs != Pairs::Off),
+                stats: m.adapts_pairs().then_some(&self.sort_stats),
             };
             self.permute
                 .sort_seeds(&mut self.rec, &sp, &input, &self.seeds[cur])?;
         }
         if m.retargets() {
-            self.rec.begin_pass("retarget")?;
+            self.rec.begin_pass("retarget_seeds")?;
             let rp = self.screen.retarget_params(off);
             self.permute.retarget_seeds(
                 &mut self.rec,
@@ -423,17 +418,12 @@ impl Renderer {
         };
         self.frame += 1;
         self.accumulated = self.accumulated.saturating_add(1);
-        self.dispatch_vertices = passes::next_dispatch_vertices(
+        self.dispatch_vertices = blueshift_trace::next_dispatch_vertices(
             per_dispatch,
             self.cfg.bounces,
             stats.trace_loop_iterations,
         );
-        if stats.trace_loop_iterations >= self.cfg.loop_guard {
-            return Err(RenderError::LoopLimit {
-                iterations: stats.trace_loop_iterations,
-                guard: self.cfg.loop_guard,
-            });
-        }
+        blueshift_trace::check_loop_guard(stats.trace_loop_iterations, self.cfg.loop_guard)?;
         Ok(stats)
     }
 

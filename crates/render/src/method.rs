@@ -1,13 +1,76 @@
-//! The methods Blueshift compares, and what each means for the passes.
+//! The methods Blueshift compares: baselines, and the seed-permutation methods as one
+//! specification ([`Permutation`]) with named presets.
 use blueshift_sampling::Sampler;
+
+/// What the sorting pass ranks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Key {
+    /// Luminance of the raw estimate (the paper).
+    Raw,
+    /// Luminance over the primary hit's base colour: the light a seed gathered, not its
+    /// product with the texture, so textures do not scramble the ranks.
+    Demodulated,
+    /// The demodulated key minus its surface's mean over earlier frames (`permute/history_key`):
+    /// an estimate of the seed's error rather than of the image.
+    History,
+}
+
+/// Which pixels of a block rank together.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Grouping {
+    /// The whole block (the paper).
+    Blocks,
+    /// Each surface of the block (G-buffer classes, `permute/classify_pixels`).
+    Surfaces,
+}
+
+/// How seeds reach the next frame's mask.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Transport {
+    /// They do not: the sorting pass alone.
+    None,
+    /// The precomputed retarget table carries mask frame t onto t + 1 (the paper).
+    Retarget,
+    /// No table: each frame sorts [`GRID_BLOCK`]-sized blocks against the next frame's mask, on
+    /// a block grid that moves every frame (`permute::grid_offset`).
+    Grid,
+}
+
+/// Whether seeds follow the image between frames.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Motion {
+    /// Seeds stay on the screen (the paper).
+    None,
+    /// Seeds follow their surface: a bijective reprojection along the G-buffer's motion.
+    Reproject,
+}
+
+/// Which classes rank against antithetic pairs instead of the mask (`SortParams::pairs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Pairs {
+    Off,
+    /// Classes at most 2 px wide or tall, where the mask restricted to a strip is not blue.
+    Thin,
+    /// Every class while the sorting keys are about symmetric, none while many classes are
+    /// heavy-tailed ([`crate::PairsGate`], from the sorting pass's counts).
+    Adaptive,
+}
+
+/// A seed-permutation method: each field gates its own passes and shader code.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Permutation {
+    pub key: Key,
+    pub grouping: Grouping,
+    pub transport: Transport,
+    pub motion: Motion,
+    pub pairs: Pairs,
+}
 
 /// A way of choosing per-pixel randomness over frames.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
     /// Fresh decorrelated randomness every frame: seed = hash(pixel seed, frame).
     White,
-    /// Decorrelated seeds fixed for the whole sequence (the permutation methods' starting point).
-    WhiteFixed,
     /// Owen-scrambled Sobol, fixed per-pixel scramble seeds, sample index advancing per frame.
     Sobol,
     /// HBO+19: Owen-Sobol with per-pixel keys optimised offline so that frame 0's error is
@@ -17,106 +80,91 @@ pub enum Method {
     MaskR2,
     /// Spatio-temporal blue-noise mask slices in the same role.
     Stbn,
-    /// Sorting pass only.
-    Sort,
-    /// Sorting + retargeting (Heitz & Belcour 2019): the default.
-    SortRetarget,
-    /// Ours: sorting + retargeting, and seeds follow their surface between frames (a
-    /// bijective reprojection along the G-buffer's motion; the mask moves with the image).
-    SortRetargetReproject,
-    /// Ours: sorting ranks only pixels of one surface (G-buffer classes) within a block.
-    SortRetargetEdges,
-    /// Ours: reprojection, edge-aware grouping and the demodulated key together.
-    SortRetargetPlus,
-    /// Ours: sorting + retargeting on a demodulated key (the estimate over the primary hit's
-    /// base colour), so textures do not scramble the ranks.
-    SortRetargetDemod,
-    /// Ours: no retargeting; each frame sorts GRID_BLOCK-sized blocks against the next
-    /// frame's mask on a block grid that moves every frame (`permute::grid_offset`), so seeds
-    /// cross block borders but never move more than GRID_BLOCK - 1 pixels per frame. Classes
-    /// at most 2 px wide or tall in a block rank against antithetic pairs on a checkerboard
-    /// (`SortParams::pairs`), since the mask restricted to a thin strip is not blue.
-    SortGrid,
-    /// Ours: `SortGrid` ranking only within surfaces (G-buffer classes): seeds never leave
-    /// their surface.
-    SortGridEdges,
-    /// Ours: `SortGridEdges` with reprojection and the demodulated key.
-    SortGridPlus,
-    /// Ours: `SortGridPlus` with antithetic pairs in every class, not only thin ones: lower P1,
-    /// but the error becomes a checkerboard with mask-ordered magnitudes, not blue noise.
-    SortGridPairs,
-    /// Ours: `SortGridPlus` ranking history keys (`permute/history_key`): each pixel's key
-    /// minus its surface's mean key over earlier frames, an estimate of the seed's error.
-    SortGridHistory,
-    /// Ours: `SortGridHistory` with antithetic pairs in every class while the sorting keys are
-    /// about symmetric, and in none (the mask everywhere) while many classes have heavy-tailed
-    /// keys (counted by the sorting pass; `PairsGate`).
-    SortGridAdaptive,
-    /// Evaluation only: `SortGridHistory`'s passes, but the sorting pass ranks each pixel's
-    /// exact luminance error against the frame's reference (`permute/oracle_key`). No
-    /// renderer has that reference; the method measures the ceiling of any sorting key.
-    SortGridOracle,
+    /// Per-pixel seeds permuted between frames.
+    Permute(Permutation),
 }
 
-/// Block edge of the moving-grid methods, whatever the paper's block size: without
-/// retargeting, the blocks alone carry seeds across the screen, and 8 (the largest the
-/// sorting pass allows) measured best on the bundled scenes (README, "Beyond the paper").
+/// Block edge of the moving grid, whatever the paper's block size: without retargeting, the
+/// blocks alone carry seeds across the screen, and 8 (the largest the sorting pass allows)
+/// measured best on the bundled scenes (docs/experiments.md).
 pub const GRID_BLOCK: u32 = 8;
 
+const PAPER: Permutation = Permutation {
+    key: Key::Raw,
+    grouping: Grouping::Blocks,
+    transport: Transport::Retarget,
+    motion: Motion::None,
+    pairs: Pairs::Off,
+};
+
+const SORT: Permutation = Permutation {
+    transport: Transport::None,
+    ..PAPER
+};
+
+const HISTORY: Permutation = Permutation {
+    key: Key::History,
+    grouping: Grouping::Surfaces,
+    transport: Transport::Grid,
+    motion: Motion::Reproject,
+    pairs: Pairs::Thin,
+};
+
 impl Method {
-    pub const ALL: [Method; 19] = [
-        Method::White,
-        Method::WhiteFixed,
-        Method::Sobol,
-        Method::Hbo19,
-        Method::MaskR2,
-        Method::Stbn,
-        Method::Sort,
-        Method::SortRetarget,
-        Method::SortRetargetReproject,
-        Method::SortRetargetEdges,
-        Method::SortRetargetPlus,
-        Method::SortRetargetDemod,
-        Method::SortGrid,
-        Method::SortGridEdges,
-        Method::SortGridPlus,
-        Method::SortGridPairs,
-        Method::SortGridHistory,
-        Method::SortGridAdaptive,
-        Method::SortGridOracle,
+    /// The sorting pass only (Heitz & Belcour 2019, without retargeting).
+    pub const SORT: Method = Method::Permute(SORT);
+    /// Sorting + retargeting (Heitz & Belcour 2019): the default.
+    pub const SORT_RETARGET: Method = Method::Permute(PAPER);
+    /// Moving grid, reprojection, surfaces, history keys, thin-class pairs.
+    pub const SORT_GRID_HISTORY: Method = Method::Permute(HISTORY);
+    /// [`Method::SORT_GRID_HISTORY`] with adaptive pairs.
+    pub const SORT_GRID_ADAPTIVE: Method = Method::Permute(Permutation {
+        pairs: Pairs::Adaptive,
+        ..HISTORY
+    });
+
+    /// The named presets `--method` offers, in the order of the documentation.
+    pub const PRESETS: [(&'static str, Method); 9] = [
+        ("white", Method::White),
+        ("sobol", Method::Sobol),
+        ("hbo19", Method::Hbo19),
+        ("mask-r2", Method::MaskR2),
+        ("stbn", Method::Stbn),
+        ("sort", Method::SORT),
+        ("sort-retarget", Method::SORT_RETARGET),
+        ("sort-grid-history", Method::SORT_GRID_HISTORY),
+        ("sort-grid-adaptive", Method::SORT_GRID_ADAPTIVE),
     ];
 
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::White => "white",
-            Method::WhiteFixed => "white-fixed",
-            Method::Sobol => "sobol",
-            Method::Hbo19 => "hbo19",
-            Method::MaskR2 => "mask-r2",
-            Method::Stbn => "stbn",
-            Method::Sort => "sort",
-            Method::SortRetarget => "sort-retarget",
-            Method::SortRetargetReproject => "sort-retarget-reproject",
-            Method::SortRetargetEdges => "sort-retarget-edges",
-            Method::SortRetargetPlus => "sort-retarget-plus",
-            Method::SortRetargetDemod => "sort-retarget-demod",
-            Method::SortGrid => "sort-grid",
-            Method::SortGridEdges => "sort-grid-edges",
-            Method::SortGridPlus => "sort-grid-plus",
-            Method::SortGridPairs => "sort-grid-pairs",
-            Method::SortGridHistory => "sort-grid-history",
-            Method::SortGridAdaptive => "sort-grid-adaptive",
-            Method::SortGridOracle => "sort-grid-oracle",
+    /// The preset's name, or the spelled-out form `sort:field=value,...` of the fields that
+    /// differ from `sort`.
+    pub fn name(self) -> String {
+        if let Some((name, _)) = Self::PRESETS.iter().find(|(_, m)| *m == self) {
+            return (*name).to_string();
         }
+        let Method::Permute(p) = self else {
+            return format!("{self:?}"); // every baseline is a preset
+        };
+        let fields: Vec<String> = crate::method_spec::fields(&p)
+            .into_iter()
+            .zip(crate::method_spec::fields(&SORT))
+            .filter(|(a, b)| a != b)
+            .map(|((field, value), _)| format!("{field}={value}"))
+            .collect();
+        format!("sort:{}", fields.join(","))
     }
 
-    pub fn from_name(name: &str) -> Option<Method> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
-    }
-
-    /// All names, for error messages and `--help`.
+    /// All preset names, for error messages and `--help`.
     pub fn names() -> String {
-        Self::ALL.map(|m| m.name()).join(", ")
+        Self::PRESETS.map(|(n, _)| n).join(", ")
+    }
+
+    /// The permutation spec, for the seed-permutation methods.
+    pub fn permutation(self) -> Option<Permutation> {
+        match self {
+            Method::Permute(p) => Some(p),
+            _ => None,
+        }
     }
 
     /// The seeded sampler this method uses unless overridden.
@@ -130,22 +178,17 @@ impl Method {
 
     /// Whether the sorting pass runs.
     pub fn sorts(self) -> bool {
-        self == Method::Sort || self.shifts_grid() || self.retargets()
+        self.permutation().is_some()
+    }
+
+    fn has(self, f: impl Fn(Permutation) -> bool) -> bool {
+        self.permutation().is_some_and(f)
     }
 
     /// Whether sorting runs on a moving block grid against the next frame's mask (instead of
     /// retargeting).
     pub fn shifts_grid(self) -> bool {
-        matches!(
-            self,
-            Method::SortGrid
-                | Method::SortGridEdges
-                | Method::SortGridPlus
-                | Method::SortGridPairs
-                | Method::SortGridHistory
-                | Method::SortGridAdaptive
-                | Method::SortGridOracle
-        )
+        self.has(|p| p.transport == Transport::Grid)
     }
 
     /// The sorting block edge: `requested` (the paper's B) or GRID_BLOCK for the moving grid.
@@ -164,89 +207,48 @@ impl Method {
 
     /// Whether the retargeting pass runs.
     pub fn retargets(self) -> bool {
-        matches!(
-            self,
-            Method::SortRetarget
-                | Method::SortRetargetReproject
-                | Method::SortRetargetEdges
-                | Method::SortRetargetPlus
-                | Method::SortRetargetDemod
-        )
+        self.has(|p| p.transport == Transport::Retarget)
     }
 
     /// Whether seeds are reprojected along the motion between frames.
     pub fn reprojects(self) -> bool {
-        matches!(
-            self,
-            Method::SortRetargetReproject
-                | Method::SortRetargetPlus
-                | Method::SortGridPlus
-                | Method::SortGridPairs
-                | Method::SortGridHistory
-                | Method::SortGridAdaptive
-                | Method::SortGridOracle
-        )
+        self.has(|p| p.motion == Motion::Reproject)
     }
 
-    /// Whether the sorting key is demodulated by the primary hit's base colour.
+    /// Whether the sorting key is demodulated by the primary hit's base colour (history keys
+    /// are demodulated too).
     pub fn demodulates(self) -> bool {
-        matches!(
-            self,
-            Method::SortRetargetDemod
-                | Method::SortRetargetPlus
-                | Method::SortGridPlus
-                | Method::SortGridPairs
-                | Method::SortGridHistory
-                | Method::SortGridAdaptive
-        )
+        self.has(|p| p.key != Key::Raw)
     }
 
     /// Whether sorting ranks within G-buffer surface classes.
     pub fn edge_aware(self) -> bool {
-        matches!(
-            self,
-            Method::SortRetargetEdges
-                | Method::SortRetargetPlus
-                | Method::SortGridEdges
-                | Method::SortGridPlus
-                | Method::SortGridPairs
-                | Method::SortGridHistory
-                | Method::SortGridAdaptive
-                | Method::SortGridOracle
-        )
+        self.has(|p| p.grouping == Grouping::Surfaces)
     }
 
     /// Whether the sorting pass ranks history keys (`permute/history_key`).
     pub fn history_keys(self) -> bool {
-        matches!(self, Method::SortGridHistory | Method::SortGridAdaptive)
-    }
-
-    /// Whether the sorting pass ranks exact errors (`permute/oracle_key`), so that every frame
-    /// needs `Renderer::set_reference_luminance` first (only `blueshift eval` has references).
-    pub fn needs_reference(self) -> bool {
-        self == Method::SortGridOracle
+        self.has(|p| p.key == Key::History)
     }
 
     /// Whether the pairs' checkerboard phase is a hash bit of the frame rather than its parity
-    /// (`permute::pair_phase`): the methods that rank errors, where an alternating phase that a
-    /// 1 px/frame pan cancels fed a bias back through the history means.
+    /// (`permute::pair_phase`): with history keys an alternating phase that a 1 px/frame pan
+    /// cancels feeds a bias back through the history means.
     pub fn hashes_pair_phase(self) -> bool {
-        self.history_keys() || self.needs_reference()
+        self.history_keys()
     }
 
     /// Whether the sorting pass counts skewed classes and `PairsGate` chooses the pairs.
     pub fn adapts_pairs(self) -> bool {
-        self == Method::SortGridAdaptive
+        self.has(|p| p.pairs == Pairs::Adaptive)
     }
 
-    /// Which classes rank against antithetic pairs (`SortParams::pairs`): thin ones for the
-    /// moving grid, every one for `SortGridPairs`, what `gate` chose from the sequence's
-    /// counts so far for `SortGridAdaptive`, none otherwise.
+    /// Which classes rank against antithetic pairs (`SortParams::pairs`): 0 none, 1 thin ones,
+    /// 2 every one; adaptive pairs take what `gate` chose from the sequence's counts so far.
     pub fn pairs(self, gate: &crate::PairsGate) -> u32 {
-        match self {
-            Method::SortGridAdaptive => gate.pairs(),
-            Method::SortGridPairs => 2,
-            m if m.shifts_grid() => 1,
+        match self.permutation().map(|p| p.pairs) {
+            Some(Pairs::Thin) => 1,
+            Some(Pairs::Adaptive) => gate.pairs(),
             _ => 0,
         }
     }
@@ -254,14 +256,13 @@ impl Method {
 
 impl std::fmt::Display for Method {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
+        f.write_str(&self.name())
     }
 }
 
 impl std::str::FromStr for Method {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        Method::from_name(s)
-            .ok_or_else(|| format!("unknown method '{s}' (known: {})", Method::names()))
+        crate::method_spec::parse(s)
     }
 }

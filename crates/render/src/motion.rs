@@ -1,16 +1,15 @@
 //! Our extensions of the paper's frame loop (algorithm.md, "Motion and failure cases"):
 //! G-buffer, edge-aware grouping (classes for the sorting pass) and bijective seed
 //! reprojection, with the mask offset following the image's mean motion.
-use crate::gbuffer::GBufferPass;
-use crate::{RenderError, Renderer, Result, SceneBuffers, SceneImages};
+use crate::{GBufferPass, RenderError, Renderer, Result, SceneBuffers, SceneImages};
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::motion::{
     GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HISTORY_RADIUS, HistoryParams,
-    MotionParams, OracleParams,
+    MotionParams,
 };
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::{
-    HistoryKeys, OracleKeys, Reprojection, Screen, follow_offset, mask_offset, mean_motion,
+    HistoryKeys, Reprojection, Screen, follow_offset, mask_offset, mean_motion,
 };
 
 /// G-buffers (this and the previous frame), surface classes, reprojection scratch, and what
@@ -223,42 +222,6 @@ impl Renderer {
         Ok(())
     }
 
-    /// Sets this frame's reference luminance (W*H, row-major) for `sort-grid-oracle`, which
-    /// ranks exact errors: call before every `render_frame` of that method.
-    pub fn set_reference_luminance(&mut self, luminance: &[f32]) -> Result<()> {
-        let (w, h) = (self.screen.width, self.screen.height);
-        let (keys, frame) = match &mut self.oracle {
-            Some(o) => o,
-            slot @ None => slot.insert((OracleKeys::new(&self.dev, w, h)?, None)),
-        };
-        keys.set_reference(luminance)?;
-        *frame = Some(self.frame);
-        Ok(())
-    }
-
-    /// For `sort-grid-oracle`: records `oracle_key` (after the trace pass, before sorting).
-    pub(crate) fn record_oracle_keys(&mut self) -> Result<()> {
-        if !self.cfg.method.needs_reference() {
-            return Ok(());
-        }
-        // The reference is used up by this frame, set or not.
-        let stamp = self.oracle.as_mut().and_then(|(_, frame)| frame.take());
-        let (Some((keys, _)), true) = (&self.oracle, stamp == Some(self.frame)) else {
-            return Err(RenderError::Invalid(format!(
-                "{} ranks exact errors and needs frame {}'s reference luminance \
-                 (Renderer::set_reference_luminance); only `blueshift eval` has references",
-                self.cfg.method, self.frame
-            )));
-        };
-        let p = OracleParams {
-            width: self.screen.width,
-            height: self.screen.height,
-        };
-        self.rec.begin_pass("oracle_key")?;
-        keys.oracle_key(&mut self.rec, &p, &self.estimate)?;
-        Ok(())
-    }
-
     /// For edge-aware methods: records the G-buffer (unless `prepare_frame` wrote it) and the
     /// classes the sorting pass then reads.
     pub(crate) fn record_classes(
@@ -274,7 +237,7 @@ impl Renderer {
         if !m.reprojects() {
             st.record_gbuffer(&mut self.rec, tp, &self.scene, &self.images)?;
         }
-        self.rec.begin_pass("classify")?;
+        self.rec.begin_pass("classify_pixels")?;
         self.permute
             .classify_pixels(&mut self.rec, sort, st.current_gbuffer(), &st.classes)?;
         Ok(())

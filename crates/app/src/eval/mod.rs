@@ -278,9 +278,6 @@ fn run_method(
             r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
             let rf = refs.frame(t, w, h);
             let reference_y = rf.luminance();
-            if method.needs_reference() {
-                r.set_reference_luminance(&reference_y)?;
-            }
             let stats = r.render_frame()?;
             for p in stats.passes {
                 times.entry(p.name).or_default().push(p.ms);

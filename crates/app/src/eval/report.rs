@@ -225,17 +225,9 @@ fn markdown(
                 )
             };
             let trace = r.pass_ms.get("trace").copied().unwrap_or(0.0);
-            // Every pass a method adds to the path tracer (gbuffer, classify, reproject for
-            // our extensions).
-            let perm: f64 = [
-                "gbuffer",
-                "reproject_motion",
-                "reproject_seeds",
-                "classify",
-                "sort",
-                "retarget",
-            ]
-            .iter()
+            // Every pass a method adds to the path tracer.
+            let perm: f64 = blueshift_render::PERMUTE_PASSES
+                .iter()
             .map(|p| r.pass_ms.get(*p).copied().unwrap_or(0.0))
             .sum();
             let overhead = if trace > 0.0 && perm > 0.0 {

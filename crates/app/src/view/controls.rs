@@ -2,17 +2,16 @@
 use super::input::Action;
 use blueshift_render::{FrameStats, Method};
 
-/// The methods of keys 1-9 and 0.
-pub const VIEW_METHODS: [Method; 10] = [
+/// The methods of keys 1-9.
+pub const VIEW_METHODS: [Method; 9] = [
     Method::White,
     Method::Sobol,
     Method::MaskR2,
     Method::Stbn,
-    Method::Sort,
-    Method::SortRetarget,
-    Method::SortRetargetPlus,
-    Method::SortGridAdaptive,
-    Method::SortGridPlus,
+    Method::SORT,
+    Method::SORT_RETARGET,
+    Method::SORT_GRID_HISTORY,
+    Method::SORT_GRID_ADAPTIVE,
     Method::Hbo19,
 ];
 /// Limits of the interactive controls (the renderer accepts more; these stay interactive).
@@ -137,9 +136,10 @@ pub fn pass_times(stats: &[FrameStats], present_ms: f64) -> String {
         ("reproject_motion", "motion"),
         ("reproject_seeds", "reproject"),
         ("trace", "trace"),
-        ("classify", "classify"),
-        ("sort", "sort"),
-        ("retarget", "retarget"),
+        ("history_key", "history"),
+        ("classify_pixels", "classify"),
+        ("sort_seeds", "sort"),
+        ("retarget_seeds", "retarget"),
         ("accumulate", "accum"),
         ("tonemap", "tonemap"),
     ] {
@@ -187,7 +187,7 @@ mod tests {
 
     fn settings() -> Settings {
         Settings {
-            methods: [Method::SortRetarget, Method::White],
+            methods: [Method::SORT_RETARGET, Method::White],
             side: 0,
             spp: 1,
             bounces: 4,
@@ -230,7 +230,7 @@ mod tests {
         assert_eq!(s.methods[0], Method::MaskR2, "side ignored without split");
         assert_eq!(s.apply(Action::ToggleSplit), Change::Split);
         s.apply(Action::Method(4));
-        assert_eq!(s.methods, [Method::MaskR2, Method::Sort]);
+        assert_eq!(s.methods, [Method::MaskR2, Method::SORT]);
         assert_eq!(s.method_label(), "mask-r2 | [sort]");
         assert_eq!(s.apply(Action::Method(4)), Change::Nothing);
     }
@@ -239,7 +239,7 @@ mod tests {
     fn title_shows_settings_and_pass_times() {
         let stats = FrameStats {
             frame: 3,
-            passes: ["trace", "sort", "retarget", "accumulate", "tonemap"]
+            passes: ["trace", "sort_seeds", "retarget_seeds", "accumulate", "tonemap"]
                 .iter()
                 .map(|n| PassTime {
                     name: n.to_string(),

@@ -318,12 +318,12 @@ impl ViewGpu {
         self.rec.dispatch(
             &self.present,
             &[
-                a.ldr_buffer().into(),
-                b.ldr_buffer().into(),
-                a.accum_buffer().into(),
-                b.accum_buffer().into(),
-                reference.into(),
-                out.into(),
+                ("ldr_a", a.ldr_buffer().into()),
+                ("ldr_b", b.ldr_buffer().into()),
+                ("accum_a", a.accum_buffer().into()),
+                ("accum_b", b.accum_buffer().into()),
+                ("reference", reference.into()),
+                ("window", out.into()),
             ],
             bytemuck::bytes_of(&p),
             [w.div_ceil(8), h.div_ceil(8), 1],
@@ -372,7 +372,7 @@ fn make_renderer(
         block: s.block,
         ..opts.template.clone()
     };
-    let cfg = config(&args, method.name())?;
+    let cfg = config(&args, &method.name())?;
     Renderer::new(dev, &opts.scene, &opts.assets, cfg)
         .with_context(|| format!("creating the {method} renderer at {}x{}", size.0, size.1))
 }

@@ -1,9 +1,9 @@
 //! The `gbuffer` pass (shaders/trace/gbuffer.comp) and its CPU twin: the primary hit through
 //! every pixel centre, which edge-aware grouping and seed reprojection compare between pixels
 //! and frames.
+use crate::buffers::SceneBuffers;
 use crate::images::SceneImages;
-use crate::passes::scene_resources;
-use crate::upload::SceneBuffers;
+use crate::pass::scene_resources;
 use crate::{Result, TRACE_BINDINGS};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder};
 use blueshift_layout::motion::GBufferTexel;
@@ -44,7 +44,7 @@ impl GBufferPass {
     ) -> Result<()> {
         rec.dispatch(
             &self.pipeline,
-            &[&scene_resources(s, i)[..], &[out.into()]].concat(),
+            &[&scene_resources(s, i)[..], &[("gbuffer", out.into())]].concat(),
             bytemuck::bytes_of(p),
             [p.width.div_ceil(8), p.height.div_ceil(8), 1],
         )?;

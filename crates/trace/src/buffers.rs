@@ -1,5 +1,5 @@
 //! Scene upload: one named storage buffer per scene array.
-use crate::{RenderError, Result};
+use crate::{Result, TraceError};
 use blueshift_device::{Buffer, Device};
 use blueshift_scene::SceneGpu;
 
@@ -29,7 +29,7 @@ impl SceneBuffers {
         let limit = dev.info().max_storage_buffer_range;
         scene
             .check_limits(limit)
-            .map_err(|e| RenderError::Scene(e.to_string()))?;
+            .map_err(|e| TraceError::Scene(e.to_string()))?;
         Ok(Self {
             nodes: Buffer::from_slice(dev, "scene.bvh_nodes", &scene.nodes)?,
             triangles: Buffer::from_slice(dev, "scene.bvh_triangles", &scene.triangles)?,

@@ -1,9 +1,8 @@
 //! The scene as storage images for the trace pass (layout: `blueshift_scene::gpu::texels`):
 //! each texel array is uploaded to a staging buffer and copied into its `rgba32ui` image by
-//! `trace/upload_texels`, once per scene.
-use crate::passes::ImagePasses;
-use crate::{RenderError, Result};
-use blueshift_device::{Buffer, Device, Image, Recorder, vk};
+//! `scene/upload_texels`, once per scene.
+use crate::{Result, TraceError};
+use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Image, Recorder, vk};
 use blueshift_scene::SceneGpu;
 use blueshift_scene::gpu::TexelArray;
 
@@ -35,15 +34,21 @@ impl std::fmt::Debug for SceneImages {
 
 impl SceneImages {
     /// Packs `scene` into texels and uploads them (one submission, waited on).
-    pub fn new(dev: &Device, passes: &ImagePasses, scene: &SceneGpu) -> Result<Self> {
+    pub fn new(dev: &Device, scene: &SceneGpu) -> Result<Self> {
         let t = scene.texels();
         let max = dev.info().max_image_dimension_2d;
         if t.max_extent() > max {
-            return Err(RenderError::Scene(format!(
+            return Err(TraceError::Scene(format!(
                 "the scene needs a {}-texel image side, over the device's maxImageDimension2D {max}",
                 t.max_extent()
             )));
         }
+        let upload = blueshift_shaders::pipeline(
+            dev,
+            "scene/upload_texels",
+            &[Binding::storage(0, "src"), Binding::image(1, "dst")],
+            4,
+        )?;
         let mut rec = Recorder::new(dev, "scene.upload")?;
         rec.begin()?;
         rec.begin_pass("upload_texels")?;
@@ -53,7 +58,7 @@ impl SceneImages {
             let img = Image::new(dev, a.name, w, h, vk::Format::R32G32B32A32_UINT)?;
             let src = Buffer::from_slice(dev, &format!("{}.staging", a.name), &a.texels)?;
             rec.init_image(&img)?;
-            passes.upload_texels(&mut rec, &src, &img, a.texels.len() as u32)?;
+            upload_texels(&mut rec, &upload, &src, &img, a.texels.len() as u32)?;
             staging.push(src);
             Ok(img)
         };
@@ -79,4 +84,23 @@ impl SceneImages {
         drop(staging);
         Ok(images)
     }
+}
+
+/// Records the copy of `count` texels from `src` into the scene image `dst`.
+fn upload_texels(
+    rec: &mut Recorder,
+    pipeline: &ComputePipeline,
+    src: &Buffer,
+    dst: &Image,
+    count: u32,
+) -> Result<()> {
+    let groups = count.div_ceil(64);
+    let x = groups.min(rec.device().info().max_compute_work_group_count[0]);
+    rec.dispatch(
+        pipeline,
+        &[("src", src.into()), ("dst", dst.into())],
+        bytemuck::bytes_of(&count),
+        [x, groups.div_ceil(x), 1],
+    )?;
+    Ok(())
 }

@@ -1,0 +1,225 @@
+//! Shader variants: one GLSL body compiled several times with different `#define`s.
+//!
+//! llvmpipe runs both sides of every branch, so code a method or scene never uses is compiled
+//! out instead of skipped at run time. This list is the single source of the variants: the
+//! shaders crate's build script compiles each one, and the passes name the one they need
+//! through the same types, so the two cannot drift apart.
+use blueshift_sampling::Sampler;
+
+/// One compiled variant: `body` (a path under `shaders/`) with `defines` set before it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ShaderVariant {
+    /// The name passes look the SPIR-V up by, e.g. `"trace/trace_sobol_mask"`.
+    pub name: String,
+    pub body: &'static str,
+    pub defines: Vec<(&'static str, String)>,
+}
+
+/// A path-tracer pipeline (`trace/trace_body.glsl`). All variants share one binding table and
+/// push-constant block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct TraceVariant {
+    pub sampler: Sampler,
+    /// Blue-noise mask modes (`TraceParams::mask_mode != MASK_MODE_NONE`).
+    pub mask: bool,
+    /// Material textures (some material has one).
+    pub textures: bool,
+    /// The Lambert-only BRDF (every material has metallic = specular = 0).
+    pub lambert: bool,
+    /// Count loop iterations (`--loop-stats`): every other choice is made at run time then, so
+    /// only the sampler's key table (HBO+19 or not) selects among these.
+    pub loop_stats: bool,
+}
+
+impl TraceVariant {
+    /// The shader name: `trace/trace_<sampler>[_mask][_tex][_lambert]`, or
+    /// `trace/trace_loop_stats[_hbo19]`.
+    pub fn shader(self) -> String {
+        let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
+        if self.loop_stats {
+            let hbo19 = self.sampler == Sampler::Hbo19;
+            return format!("trace/trace_loop_stats{}", flag(hbo19, "_hbo19"));
+        }
+        format!(
+            "trace/trace_{}{}{}{}",
+            self.sampler.name(),
+            flag(self.mask, "_mask"),
+            flag(self.textures, "_tex"),
+            flag(self.lambert, "_lambert"),
+        )
+    }
+
+    fn variant(self) -> ShaderVariant {
+        let hbo19 = self.sampler == Sampler::Hbo19;
+        let bit = |on: bool| u32::from(on).to_string();
+        let kind = if self.loop_stats && !hbo19 {
+            "P.sampler_kind".to_string() // the run-time choice: one shader counts them all
+        } else {
+            format!("SAMPLER_{}", self.sampler.name().to_uppercase())
+        };
+        let mut defines = if self.loop_stats {
+            vec![
+                ("TRACE_SAMPLER_KIND", kind),
+                ("TRACE_MASK", bit(true)),
+                ("TRACE_TEXTURES", bit(true)),
+                ("TRACE_LOOP_STATS", bit(true)),
+            ]
+        } else {
+            vec![
+                ("TRACE_SAMPLER_KIND", kind),
+                ("TRACE_MASK", bit(self.mask)),
+                ("TRACE_TEXTURES", bit(self.textures)),
+                ("TRACE_LAMBERT", bit(self.lambert)),
+            ]
+        };
+        defines.push(("TRACE_HBO19", bit(hbo19)));
+        ShaderVariant {
+            name: self.shader(),
+            body: "trace/trace_body.glsl",
+            defines,
+        }
+    }
+
+    /// Every distinct variant.
+    pub fn all() -> Vec<TraceVariant> {
+        let mut out = Vec::new();
+        for sampler in Sampler::ALL {
+            for bits in 0..8u32 {
+                out.push(TraceVariant {
+                    sampler,
+                    mask: bits & 1 != 0,
+                    textures: bits & 2 != 0,
+                    lambert: bits & 4 != 0,
+                    loop_stats: false,
+                });
+            }
+        }
+        for sampler in [Sampler::White, Sampler::Hbo19] {
+            out.push(TraceVariant {
+                sampler,
+                mask: true,
+                textures: true,
+                lambert: false,
+                loop_stats: true,
+            });
+        }
+        out
+    }
+
+    /// The variant that serves these choices (loop statistics ignore all but HBO+19 or not).
+    pub fn canonical(self) -> TraceVariant {
+        if !self.loop_stats {
+            return self;
+        }
+        let hbo19 = self.sampler == Sampler::Hbo19;
+        TraceVariant {
+            sampler: if hbo19 { Sampler::Hbo19 } else { Sampler::White },
+            mask: true,
+            textures: true,
+            lambert: false,
+            loop_stats: true,
+        }
+    }
+}
+
+/// A sorting-pass pipeline (`permute/sort_seeds.glsl`): each extension of the paper's
+/// sorting adds its bindings and code only where a method asks for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SortVariant {
+    /// Rank within surface classes (`classes` binding); otherwise one class per block.
+    pub classes: bool,
+    /// Rank keys minus history means (`history` binding); otherwise raw keys.
+    pub history: bool,
+    /// Antithetic pairs (`SortParams::pairs` chooses which classes at run time).
+    pub pairs: bool,
+    /// Count skewed classes (`stats` binding, `SortParams::count_skew`).
+    pub skew: bool,
+}
+
+impl SortVariant {
+    /// The paper's sorting: none of the extensions.
+    pub const PAPER: SortVariant = SortVariant {
+        classes: false,
+        history: false,
+        pairs: false,
+        skew: false,
+    };
+
+    /// `permute/sort_seeds` for the paper, else with a suffix per extension, e.g.
+    /// `permute/sort_seeds_classes_history_pairs`.
+    pub fn shader(self) -> String {
+        let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
+        format!(
+            "permute/sort_seeds{}{}{}{}",
+            flag(self.classes, "_classes"),
+            flag(self.history, "_history"),
+            flag(self.pairs, "_pairs"),
+            flag(self.skew, "_skew"),
+        )
+    }
+
+    fn variant(self) -> ShaderVariant {
+        let bit = |on: bool| u32::from(on).to_string();
+        ShaderVariant {
+            name: self.shader(),
+            body: "permute/sort_seeds.glsl",
+            defines: vec![
+                ("SORT_CLASSES", bit(self.classes)),
+                ("SORT_HISTORY", bit(self.history)),
+                ("SORT_PAIRS", bit(self.pairs)),
+                ("SORT_SKEW", bit(self.skew)),
+            ],
+        }
+    }
+
+    /// Every combination: 16 small shaders.
+    pub fn all() -> Vec<SortVariant> {
+        (0..16u32)
+            .map(|b| SortVariant {
+                classes: b & 1 != 0,
+                history: b & 2 != 0,
+                pairs: b & 4 != 0,
+                skew: b & 8 != 0,
+            })
+            .collect()
+    }
+}
+
+/// Every generated shader variant, for the shaders crate's build script.
+pub fn shader_variants() -> Vec<ShaderVariant> {
+    let trace = TraceVariant::all().into_iter().map(TraceVariant::variant);
+    let sort = SortVariant::all().into_iter().map(SortVariant::variant);
+    trace.chain(sort).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn variant_names_are_unique() {
+        let v = shader_variants();
+        let mut names: Vec<&str> = v.iter().map(|s| s.name.as_str()).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), v.len());
+    }
+
+    #[test]
+    fn every_choice_has_a_compiled_variant() {
+        let all = TraceVariant::all();
+        for sampler in Sampler::ALL {
+            for bits in 0..16u32 {
+                let v = TraceVariant {
+                    sampler,
+                    mask: bits & 1 != 0,
+                    textures: bits & 2 != 0,
+                    lambert: bits & 4 != 0,
+                    loop_stats: bits & 8 != 0,
+                };
+                assert!(all.contains(&v.canonical()), "{v:?}");
+            }
+        }
+        assert_eq!(SortVariant::PAPER.shader(), "permute/sort_seeds");
+    }
+}

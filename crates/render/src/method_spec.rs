@@ -1,0 +1,139 @@
+//! The spelled-out form of a permutation method, for experiments: `PRESET:field=value,...`,
+//! e.g. `sort:transport=grid,key=history,motion=reproject`. Each field overrides the preset's.
+use crate::method::{Grouping, Key, Method, Motion, Pairs, Permutation, Transport};
+
+/// (field, values in order of their enum) of every field, for parsing and help.
+const FIELDS: [(&str, &[&str]); 5] = [
+    ("key", &["raw", "demod", "history"]),
+    ("grouping", &["blocks", "surfaces"]),
+    ("transport", &["none", "retarget", "grid"]),
+    ("motion", &["none", "reproject"]),
+    ("pairs", &["off", "thin", "adaptive"]),
+];
+
+/// (field, value) of each field of `p`, in the order of [`FIELDS`].
+pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 5] {
+    let idx = [
+        p.key as usize,
+        p.grouping as usize,
+        p.transport as usize,
+        p.motion as usize,
+        p.pairs as usize,
+    ];
+    std::array::from_fn(|i| (FIELDS[i].0, FIELDS[i].1[idx[i]]))
+}
+
+fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
+    let Some((_, values)) = FIELDS.iter().find(|(f, _)| *f == field) else {
+        let known: Vec<&str> = FIELDS.iter().map(|(f, _)| *f).collect();
+        return Err(format!(
+            "unknown field '{field}' (fields: {})",
+            known.join(", ")
+        ));
+    };
+    let Some(i) = values.iter().position(|v| *v == value) else {
+        return Err(format!(
+            "unknown {field} '{value}' ({field}: {})",
+            values.join(", ")
+        ));
+    };
+    match field {
+        "key" => p.key = [Key::Raw, Key::Demodulated, Key::History][i],
+        "grouping" => p.grouping = [Grouping::Blocks, Grouping::Surfaces][i],
+        "transport" => p.transport = [Transport::None, Transport::Retarget, Transport::Grid][i],
+        "motion" => p.motion = [Motion::None, Motion::Reproject][i],
+        _ => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive][i],
+    }
+    Ok(())
+}
+
+/// Combinations the passes cannot run, with the reason.
+pub(crate) fn check(p: &Permutation) -> Result<(), String> {
+    if p.key == Key::History && p.motion != Motion::Reproject {
+        return Err("key=history needs motion=reproject (histories follow their surface)".into());
+    }
+    if p.pairs != Pairs::Off && p.transport != Transport::Grid {
+        return Err(format!(
+            "pairs={} needs transport=grid (pairs replace the next frame's mask there)",
+            fields(p)[4].1
+        ));
+    }
+    Ok(())
+}
+
+/// A preset name or a spelled-out permutation method.
+pub(crate) fn parse(s: &str) -> Result<Method, String> {
+    let unknown = || {
+        format!(
+            "unknown method '{s}' (presets: {}; or PRESET:field=value,... with {})",
+            Method::names(),
+            FIELDS
+                .iter()
+                .map(|(f, v)| format!("{f}={}", v.join("|")))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    };
+    let (base, spec) = s.split_once(':').unwrap_or((s, ""));
+    let preset = Method::PRESETS
+        .iter()
+        .find(|(n, _)| *n == base)
+        .map(|(_, m)| *m)
+        .ok_or_else(unknown)?;
+    if spec.is_empty() && !s.contains(':') {
+        return Ok(preset);
+    }
+    let Some(mut p) = preset.permutation() else {
+        return Err(format!(
+            "'{base}' is not a permutation method; only sort, sort-retarget and the sort-grid presets take fields"
+        ));
+    };
+    for item in spec.split(',') {
+        let Some((field, value)) = item.split_once('=') else {
+            return Err(format!(
+                "in method '{s}': expected field=value, got '{item}'"
+            ));
+        };
+        set(&mut p, field.trim(), value.trim()).map_err(|e| format!("in method '{s}': {e}"))?;
+    }
+    check(&p).map_err(|e| format!("in method '{s}': {e}"))?;
+    Ok(Method::Permute(p))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_round_trip_by_name() {
+        for (name, m) in Method::PRESETS {
+            assert_eq!(m.name(), name);
+            assert_eq!(name.parse::<Method>(), Ok(m));
+            if let Some(p) = m.permutation() {
+                assert_eq!(check(&p), Ok(()), "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn spelled_out_forms_name_presets_and_experiments() {
+        let adaptive: Method = "sort-grid-history:pairs=adaptive".parse().expect("valid");
+        assert_eq!(adaptive, Method::SORT_GRID_ADAPTIVE);
+        let m: Method = "sort:transport=grid,key=demod".parse().expect("valid");
+        assert_eq!(m.name(), "sort:key=demod,transport=grid");
+        assert_eq!(m.name().parse::<Method>(), Ok(m));
+        assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
+    }
+
+    #[test]
+    fn bad_forms_name_the_problem() {
+        let err = |s: &str| s.parse::<Method>().expect_err(s);
+        assert!(err("sort-grid-oracle").contains("unknown method"));
+        assert!(err("sort:key=oracle").contains("unknown key 'oracle'"));
+        assert!(err("sort:colour=red").contains("unknown field 'colour'"));
+        assert!(err("sort:key").contains("expected field=value"));
+        assert!(err("sort:key=history").contains("needs motion=reproject"));
+        assert!(err("sort-retarget:pairs=thin").contains("needs transport=grid"));
+        assert!(err("white:key=raw").contains("not a permutation method"));
+    }
+}

@@ -1,8 +1,0 @@
-#version 460
-// Path-tracer variant: sampler sobol, blue-noise mask off, textures off, Lambert BRDF only.
-// See ../trace_body.glsl.
-#define TRACE_SAMPLER_KIND SAMPLER_SOBOL
-#define TRACE_MASK 0
-#define TRACE_TEXTURES 0
-#define TRACE_LAMBERT 1
-#include "../trace_body.glsl"

@@ -1,6 +1,0 @@
-#version 460
-// Path-tracer variant: sampler sobol, blue-noise mask on, textures on. See ../trace_body.glsl.
-#define TRACE_SAMPLER_KIND SAMPLER_SOBOL
-#define TRACE_MASK 1
-#define TRACE_TEXTURES 1
-#include "../trace_body.glsl"

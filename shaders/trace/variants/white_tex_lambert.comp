@@ -1,8 +1,0 @@
-#version 460
-// Path-tracer variant: sampler white, blue-noise mask off, textures on, Lambert BRDF only.
-// See ../trace_body.glsl.
-#define TRACE_SAMPLER_KIND SAMPLER_WHITE
-#define TRACE_MASK 0
-#define TRACE_TEXTURES 1
-#define TRACE_LAMBERT 1
-#include "../trace_body.glsl"
