@@ -54,7 +54,8 @@ fn main() {
         let file_name = body.file_name().expect("a file").to_string_lossy();
         writeln!(source, "#include \"{file_name}\"").expect("string");
         // Named as if it sat next to its body, so that includes resolve from there.
-        let file = body.with_file_name(format!("{}.comp", v.name.rsplit('/').next().expect("name")));
+        let file =
+            body.with_file_name(format!("{}.comp", v.name.rsplit('/').next().expect("name")));
         sources.push((v.name, source, file));
     }
 
@@ -70,6 +71,8 @@ fn main() {
             shaderc::EnvVersion::Vulkan1_2 as u32,
         );
         opts.set_optimization_level(shaderc::OptimizationLevel::Performance);
+        // Keeps OpName / OpMemberName: passes bind resources by the names the SPIR-V declares.
+        opts.set_generate_debug_info();
         let inc = include_dir.clone();
         opts.set_include_callback(move |requested, _ty, requester, _depth| {
             let here = Path::new(requester).parent().map(Path::to_path_buf).unwrap_or_default();
@@ -94,7 +97,8 @@ fn main() {
         ) {
             Ok(art) => {
                 let spv = out_dir.join(format!("{}.spv", name.replace('/', "__")));
-                std::fs::write(&spv, art.as_binary_u8()).expect("write spv");
+                let words = strip_sources(art.as_binary());
+                std::fs::write(&spv, bytemuck_bytes(&words)).expect("write spv");
                 writeln!(
                     table,
                     "    ({name:?}, include_bytes!({:?})),",
@@ -114,4 +118,25 @@ fn main() {
         std::process::exit(1);
     }
     std::fs::write(out_dir.join("shaders.rs"), table).expect("write table");
+}
+
+/// The module without its source text and line table (OpSource*, OpString, OpLine, OpNoLine,
+/// OpModuleProcessed), keeping OpName / OpMemberName: the names are what passes bind by, and
+/// the embedded source is split into strings at byte boundaries that need not be UTF-8.
+fn strip_sources(words: &[u32]) -> Vec<u32> {
+    const DROP: [u32; 7] = [2, 3, 4, 7, 8, 317, 330];
+    let mut out = words[..5].to_vec();
+    let mut i = 5;
+    while i < words.len() {
+        let len = ((words[i] >> 16) as usize).max(1);
+        if !DROP.contains(&(words[i] & 0xffff)) {
+            out.extend_from_slice(&words[i..(i + len).min(words.len())]);
+        }
+        i += len;
+    }
+    out
+}
+
+fn bytemuck_bytes(words: &[u32]) -> Vec<u8> {
+    words.iter().flat_map(|w| w.to_le_bytes()).collect()
 }

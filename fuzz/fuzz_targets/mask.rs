@@ -12,7 +12,7 @@ fuzz_target!(|data: &[u8]| {
             data,
             "a mask that parses writes back the same bytes"
         );
-        let _ = m.to_gray();
+        let _ = blueshift_analysis::Gray::from(&m);
         let _ = m.rank(-1, i64::from(m.n as u32) + 3);
     }
     if let Some((&n, rest)) = data.split_first() {

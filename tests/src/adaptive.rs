@@ -1,7 +1,7 @@
 //! `sort-grid-adaptive`'s choice of pairs on the bundled Cornell box: the sorting pass's count
 //! of skewed classes (GPU == CPU in motion.rs) must separate the heavy-tailed keys of 8 bounces
-//! at 1 spp, where pairs in every class lose, from direct light, where they win (README, "Pairs
-//! where the errors are symmetric"). A renderer reset forgets the counts.
+//! at 1 spp, where pairs in every class lose, from direct light, where they win (docs/algorithm.md,
+//! "pairs=adaptive"). A renderer reset forgets the counts.
 use crate::Gpu;
 use blueshift_render::{
     Method, PAIRS_MAX_SKEWED_SHARE, RenderConfig, Renderer, default_assets_dir,

@@ -1,7 +1,7 @@
 //! A pipeline whose declared bindings differ from its SPIR-V fails with an error naming the
-//! shader, set and binding.
+//! shader, set and binding; dispatches bind resources by the names the shader declares.
 use crate::Gpu;
-use blueshift_device::{Binding, ComputePipeline, DeviceError};
+use blueshift_device::{Binding, Buffer, ComputePipeline, DeviceError, MemoryLocation};
 
 fn create(gpu: &Gpu, bindings: &[Binding], push: u32) -> DeviceError {
     let spirv = blueshift_shaders::require("test/rng").unwrap();
@@ -31,6 +31,66 @@ fn wrong_binding_number_is_named() {
         msg.contains("test/rng") && msg.contains("binding 0"),
         "{msg}"
     );
+}
+
+/// Two storage buffers of one kind swapped in a pass's declaration agree in number and kind
+/// with the SPIR-V; their names do not, so the pipeline is refused.
+#[test]
+fn swapped_pair_is_refused_by_name() {
+    let gpu = Gpu::new();
+    let name = "permute/retarget_seeds";
+    let spirv = blueshift_shaders::require(name).unwrap();
+    let push = size_of::<blueshift_permute::RetargetParams>() as u32;
+    let swapped = [
+        Binding::storage(0, "table"),
+        Binding::storage(1, "seeds_out"),
+        Binding::storage(2, "seeds_in"),
+    ];
+    let e = match ComputePipeline::new(gpu.dev(), name, &spirv, &swapped, push) {
+        Ok(_) => panic!("a swapped pair was accepted"),
+        Err(e) => e,
+    };
+    let msg = e.to_string();
+    assert!(
+        matches!(e, DeviceError::BindingMismatch { binding: 1, .. }),
+        "{msg}"
+    );
+    for part in [name, "binding 1", "'seeds_in'", "'seeds_out'"] {
+        assert!(msg.contains(part), "{part} missing from: {msg}");
+    }
+    let right = [
+        Binding::storage(0, "table"),
+        Binding::storage(1, "seeds_in"),
+        Binding::storage(2, "seeds_out"),
+    ];
+    assert!(ComputePipeline::new(gpu.dev(), name, &spirv, &right, push).is_ok());
+}
+
+/// A dispatch names its resources: an unknown, missing or repeated name is an error.
+#[test]
+fn dispatch_binds_by_name() {
+    let mut gpu = Gpu::new();
+    let p = gpu.pipeline("test/rng", &[Binding::storage(0, "results")], 8);
+    let out = Buffer::new(gpu.dev(), "bind.results", 64, MemoryLocation::GpuToCpu).unwrap();
+    let rec = gpu.rec.as_mut().unwrap();
+    rec.begin().unwrap();
+    let push = bytemuck::cast_slice(&[0u32, 4]);
+    let cases: [(&[(&str, blueshift_device::Res)], &str); 3] = [
+        (&[("result", (&out).into())], "no resource named 'result'"),
+        (&[], "nothing bound to 'results'"),
+        (
+            &[("results", (&out).into()), ("results", (&out).into())],
+            "'results' bound more than once",
+        ),
+    ];
+    for (resources, want) in cases {
+        let e = rec.dispatch(&p, resources, push, [1, 1, 1]).unwrap_err();
+        assert!(e.to_string().contains(want), "{e}");
+        assert!(e.to_string().contains("test/rng"), "{e}");
+    }
+    rec.dispatch(&p, &[("results", (&out).into())], push, [1, 1, 1])
+        .unwrap();
+    rec.submit_and_wait().unwrap();
 }
 
 #[test]

@@ -149,6 +149,16 @@ impl Lcg {
         }
         m
     }
+    /// History means as `history_key` leaves them: NaN (rank against the class mean) for a
+    /// quarter of the `n` pixels, the others small keys in steps of 0.5 (ties) plus a bias.
+    pub fn history_means(&mut self, n: usize, steps: u32) -> Vec<f32> {
+        (0..n)
+            .map(|_| match self.next_u32() % 4 {
+                0 => f32::NAN,
+                r => (self.next_u32() % steps) as f32 * 0.5 + r as f32 * 0.1,
+            })
+            .collect()
+    }
 }
 
 /// Luminance of a converged Cornell-box image at `w x w` (Owen-Sobol, 512 spp, direct light,

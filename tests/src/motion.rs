@@ -80,12 +80,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
         let est: Vec<[f32; 4]> = lum.iter().map(|&l| [l, l, l, l]).collect();
         // History means (history keys): NaN (rank against the class mean) for a quarter of
         // the pixels, the others near the keys.
-        let history: Vec<f32> = (0..w * h)
-            .map(|_| match rng.next_u32() % 4 {
-                0 => f32::NAN,
-                r => (rng.next_u32() % 40) as f32 * 0.5 + r as f32 * 0.1,
-            })
-            .collect();
+        let history = rng.history_means((w * h) as usize, 40);
         let init: Vec<u32> = (0..sc.seed_count() as u32)
             .map(|i| i.wrapping_mul(2654435761))
             .collect();
@@ -278,7 +273,9 @@ fn gbuffer_and_motion_match_cpu() {
     let (w, h) = (61, 47);
     let cfg = RenderConfig {
         bounces: 1,
-        method: "sort-retarget:motion=reproject,grouping=surfaces,key=demod".parse().unwrap(),
+        method: "sort-retarget:motion=reproject,grouping=surfaces,key=demod"
+            .parse()
+            .unwrap(),
         ..RenderConfig::new(w, h)
     };
     let mut r = Renderer::new(gpu.dev(), &scene, &assets, cfg).unwrap();

@@ -3,7 +3,7 @@
 use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_permute::{
-    PermutePasses, Screen, SortInput, SortParams, is_permutation_of, mask_offset,
+    PermutePasses, Screen, SortInput, SortParams, SortVariant, is_permutation_of, mask_offset,
     retarget_seeds_cpu, sort_seeds_cpu,
 };
 
@@ -87,7 +87,7 @@ fn gpu_frame(
                 mask,
                 classes: None,
                 history: None,
-                pairs: false,
+                pairs: true,
                 stats: None,
             },
             seeds[0],
@@ -286,8 +286,7 @@ fn committed_retarget_table_matches_cpu_and_keeps_radius() {
     let mut gpu = Gpu::new();
     let passes = PermutePasses::new(gpu.dev()).unwrap();
     let dir = blueshift_render::default_assets_dir();
-    let t = blueshift_analysis::assets::load_retarget(&dir.join("retarget/bn64_s48_36_r6.bin"))
-        .unwrap();
+    let t = blueshift_assets::load_retarget(&dir.join("retarget/bn64_s48_36_r6.bin")).unwrap();
     let r2 = (t.radius * t.radius) as i32;
     let table: Vec<[i32; 2]> = t
         .offsets
@@ -319,4 +318,79 @@ fn committed_retarget_table_matches_cpu_and_keeps_radius() {
         assert_eq!(b.read::<u32>().unwrap()[..want.len()], want[..]);
         assert!(is_permutation_of(&want, &init));
     }
+}
+
+/// Every variant of the sorting pass (`SortVariant`: classes, history, pairs, skew counts,
+/// each compiled in or out) against the CPU twin given the same inputs: an absent class
+/// buffer is one class per block, an absent history the raw key. Classes, NaN histories,
+/// tied keys and a firefly tail in places, on a moving grid with partial blocks.
+#[test]
+fn every_sort_variant_matches_cpu() {
+    let mut gpu = Gpu::new();
+    let mut passes = PermutePasses::new(gpu.dev()).unwrap();
+    let mut rng = Lcg(77);
+    let (w, h, n, block) = (43u32, 29u32, 16u32, 8u32);
+    let sc = Screen::new(w, h, n).unwrap();
+    let px = (w * h) as usize;
+    let mask = rng.perm(n * n);
+    let lum: Vec<f32> = (0..px)
+        .map(|_| match rng.next_u32() % 16 {
+            0 => 300.0 + (rng.next_u32() % 8) as f32,
+            _ => (rng.next_u32() % 30) as f32 * 0.5,
+        })
+        .collect();
+    // In-block class indices as classify_pixels leaves them: a few leaders per block.
+    let classes: Vec<u32> = (0..px)
+        .map(|_| [0, 0, 9, 27][rng.next_u32() as usize % 4])
+        .collect();
+    let history = rng.history_means(px, 30);
+    let init: Vec<u32> = (0..sc.seed_count() as u32)
+        .map(|i| i.wrapping_mul(2654435761))
+        .collect();
+    let dev = gpu.dev().clone();
+    let upload = |name: &str, data: &[u32]| Buffer::from_slice(&dev, name, data).unwrap();
+    let est = Buffer::from_slice(&dev, "variant.estimate", &estimate(&lum)).unwrap();
+    let mask_b = upload("variant.mask", &mask);
+    let classes_b = upload("variant.classes", &classes);
+    let history_b = Buffer::from_slice(&dev, "variant.history", &history).unwrap();
+    let mut checked = 0;
+    for (i, v) in SortVariant::all().into_iter().enumerate() {
+        let p = SortParams {
+            pairs: if v.pairs { 1 + (i as u32 / 4) % 2 } else { 0 },
+            phase: i as u32 % 2,
+            count_skew: u32::from(v.skew),
+            ..sc.sort_params_on_grid(block, (3, 7), (i as u32 % block, 5))
+                .unwrap()
+        };
+        let seeds = upload("variant.seeds", &init);
+        let stats = upload("variant.sort_stats", &[0, 0]);
+        let input = SortInput {
+            estimate: &est,
+            mask: &mask_b,
+            classes: v.classes.then_some(&classes_b),
+            history: v.history.then_some(&history_b),
+            pairs: v.pairs,
+            stats: v.skew.then_some(&stats),
+        };
+        let rec = gpu.rec.as_mut().unwrap();
+        rec.begin().unwrap();
+        rec.begin_pass("sort_seeds").unwrap();
+        passes.sort_seeds(rec, &p, &input, &seeds).unwrap();
+        rec.submit_and_wait().unwrap();
+
+        let zeros_u = vec![0u32; px];
+        let zeros_f = vec![0f32; px];
+        let cls = if v.classes { &classes } else { &zeros_u };
+        let hist = if v.history { &history } else { &zeros_f };
+        let mut cpu = init.clone();
+        let counts = sort_seeds_cpu(&p, &lum, &mask, cls, hist, &mut cpu);
+        assert_eq!(seeds.read::<u32>().unwrap(), cpu, "{}", v.shader());
+        assert!(is_permutation_of(&cpu, &init), "{}", v.shader());
+        if v.skew {
+            assert_eq!(stats.read::<u32>().unwrap(), counts, "{}", v.shader());
+            assert!(counts[1] > 0, "{}: no class counted", v.shader());
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 16);
 }

@@ -12,7 +12,12 @@ fn glsl_rng_matches_rust_twin_bit_for_bit() {
     // Two windows: small integers and values near u32::MAX (wrap-around arithmetic).
     for base in [0u32, u32::MAX - n + 1] {
         let push: Vec<u8> = bytemuck::cast_slice(&[base, n]).to_vec();
-        gpu.run(&p, &[("results", (&out).into())], &push, [groups_for(n, 64), 1, 1]);
+        gpu.run(
+            &p,
+            &[("results", (&out).into())],
+            &push,
+            [groups_for(n, 64), 1, 1],
+        );
         let got = out.read::<[u32; 4]>().unwrap();
         for (i, g) in got.iter().enumerate().take(n as usize) {
             let v = base.wrapping_add(i as u32);

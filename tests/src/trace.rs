@@ -204,7 +204,10 @@ fn renderer_seeds_stay_a_permutation() {
     let s = Scene::load(dir).unwrap();
     let extended = "sort-retarget:motion=reproject,grouping=surfaces,key=demod";
     let presets = Method::PRESETS.into_iter().map(|(_, m)| m);
-    for method in presets.chain([extended.parse().unwrap()]).filter(|m| m.sorts()) {
+    for method in presets
+        .chain([extended.parse().unwrap()])
+        .filter(|m| m.sorts())
+    {
         let cfg = RenderConfig {
             bounces: 1,
             method,

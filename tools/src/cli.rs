@@ -113,7 +113,7 @@ pub struct SpectrumArgs {
     /// Output directory (created if missing).
     #[arg(long)]
     pub out: PathBuf,
-    /// Tile side for images (Hann-windowed tiles, evaluation.md).
+    /// Tile side for images (Hann-windowed tiles, docs/results.md).
     #[arg(long, default_value_t = 64)]
     pub tile: usize,
     /// Treat square images as periodic tiles: unwindowed periodogram of the whole image.
@@ -230,7 +230,7 @@ pub struct KeysArgs {
 #[derive(Debug, clap::Args)]
 pub struct FiguresArgs {
     /// Output directory (created if missing).
-    #[arg(long, default_value = "docs/figures")]
+    #[arg(long, default_value = "out/figures")]
     pub out: PathBuf,
     /// Mask side.
     #[arg(long, default_value_t = 64)]

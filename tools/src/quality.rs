@@ -24,7 +24,7 @@ pub struct MaskQuality {
 
 /// Periodogram, radial profile, `LF` and peak ratio of a mask tile.
 pub fn mask_quality(mask: &Mask) -> blueshift_analysis::Result<MaskQuality> {
-    let spectrum = periodogram(&mask.to_gray())?;
+    let spectrum = periodogram(&Gray::from(mask))?;
     let profile = radial_profile(&spectrum);
     let lf = low_frequency_fraction(&spectrum, LF_CUTOFF);
     let high = profile.band_mean(HIGH_BAND.0, HIGH_BAND.1);
@@ -46,7 +46,7 @@ pub fn mask_quality(mask: &Mask) -> blueshift_analysis::Result<MaskQuality> {
 /// A seam is a line discontinuity, whose energy lies on an axis line; a seamless tile gives a
 /// ratio near 1 (measured 0.6-1.6 for void-and-cluster masks); the tests require `< 2.5`.
 pub fn seam_ratio(mask: &Mask) -> blueshift_analysis::Result<f64> {
-    let tiled: Gray = mask.to_gray().tiled(2, 2);
+    let tiled: Gray = Gray::from(mask).tiled(2, 2);
     let s = power_spectrum(&tiled, 2 * mask.n, Window::Hann)?;
     let n = s.n;
     let (mut axis, mut na, mut off, mut no) = (0.0, 0usize, 0.0, 0usize);

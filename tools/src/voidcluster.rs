@@ -53,7 +53,7 @@ pub struct VcParams {
 }
 
 impl VcParams {
-    /// 2D defaults of algorithm.md: sigma 1.9, density 0.1, toroidal.
+    /// 2D defaults of docs/algorithm.md: sigma 1.9, density 0.1, toroidal.
     pub fn new_2d(n: usize, seed: u64) -> Self {
         VcParams {
             n,

@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use blueshift_analysis::assets::{load_mask, load_retarget, load_stbn};
+use blueshift_assets::{load_mask, load_retarget, load_stbn};
 use blueshift_tools::commands::assets::regenerate;
 use blueshift_tools::manifest;
 use blueshift_tools::quality::{mask_quality, seam_ratio, temporal_lf};

@@ -110,7 +110,7 @@ fn masks_spectrum_dither_retarget_figures() {
         s(&d.join("t.png")),
     ]);
     assert!(out.contains("shift (12, 9)"), "{out}");
-    let t = blueshift_analysis::assets::load_retarget(&d.join("t.bin")).unwrap();
+    let t = blueshift_assets::load_retarget(&d.join("t.bin")).unwrap();
     assert_eq!((t.n, t.radius), (16, 3));
     ok(&["figures", "--size", "16", "--out", s(&d.join("fig"))]);
     for f in [

@@ -1,4 +1,4 @@
-//! Gaussian blur and the perceptual error `P_s` (evaluation.md metric 4).
+//! Gaussian blur and the perceptual error `P_s` (docs/results.md, "How the numbers are measured").
 
 use crate::{Error, Gray, Result};
 

@@ -47,11 +47,4 @@ impl Error {
             source,
         }
     }
-
-    pub(crate) fn format(path: &std::path::Path, reason: impl Into<String>) -> Self {
-        Error::Format {
-            path: path.to_path_buf(),
-            reason: reason.into(),
-        }
-    }
 }

@@ -129,6 +129,15 @@ impl Gray {
     }
 }
 
+impl From<&blueshift_assets::Mask> for Gray {
+    /// The mask as an image of `rank / (n^2 - 1)` in [0, 1].
+    fn from(mask: &blueshift_assets::Mask) -> Self {
+        let n = mask.n;
+        let m = (n * n - 1) as f32;
+        Gray::from_fn(n, n, |x, y| f32::from(mask.ranks[y * n + x]) / m)
+    }
+}
+
 /// Encodes `img` as PNG in memory and writes it with [`write_atomic`].
 pub(crate) fn save_image(img: &image::DynamicImage, path: &Path) -> Result<()> {
     let mut buf = std::io::Cursor::new(Vec::new());
@@ -164,6 +173,14 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn mask_to_gray_scales_ranks_to_unit_range() {
+        let m = blueshift_assets::Mask::new(2, vec![3, 1, 0, 2]).unwrap();
+        let g = Gray::from(&m);
+        assert_eq!((g.w, g.h), (2, 2));
+        assert_eq!(g.data, vec![1.0, 1.0 / 3.0, 0.0, 2.0 / 3.0]);
+    }
 
     #[test]
     fn luminance_weights_sum_to_one() {

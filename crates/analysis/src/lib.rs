@@ -1,6 +1,7 @@
-//! Error metrics of evaluation.md: error power spectra, radial profiles, the low-frequency
-//! fraction `LF`, anisotropy, blurred RMSE `P_s`, plots, and the loaders of the precomputed
-//! assets (blue-noise masks, spatio-temporal masks, retarget tables).
+//! Error metrics of docs/results.md: error power spectra, radial profiles, the low-frequency
+//! fraction `LF`, anisotropy, blurred RMSE `P_s`, plots. The readers and writers of the
+//! precomputed assets live in `blueshift-assets` (re-exported as [`assets`]); a mask becomes
+//! an image with `Gray::from(&mask)`.
 //!
 //! ```no_run
 //! use blueshift_analysis::{Gray, SpectrumAccumulator, Window, low_frequency_fraction};
@@ -12,7 +13,6 @@
 //! # let _ = lf; Ok(()) }
 //! ```
 
-pub mod assets;
 mod blur;
 mod error;
 mod gray;
@@ -20,6 +20,8 @@ mod plot;
 mod radial;
 mod spectrum;
 
+/// The asset readers and writers, from `blueshift-assets` (the old path keeps working).
+pub use blueshift_assets as assets;
 pub use blur::{Boundary, blurred_rmse, gaussian_blur, gaussian_kernel, rmse};
 pub use error::{Error, Result};
 pub use gray::{Gray, luminance, write_atomic};

@@ -2,7 +2,7 @@
 
 use crate::Spectrum;
 
-/// The `LF` cut-off of evaluation.md: 0.125 cycles/pixel.
+/// The `LF` cut-off of docs/results.md: 0.125 cycles/pixel.
 pub const LF_CUTOFF: f64 = 0.125;
 
 /// Radially averaged spectrum.

@@ -1,4 +1,4 @@
-//! Error power spectra (evaluation.md metric 2).
+//! Error power spectra (docs/results.md, "How the numbers are measured").
 //!
 //! **Normalisation.** For a tile `e` of side `n` with window `w`, after subtracting the tile's
 //! mean `m`:
@@ -25,9 +25,9 @@ use crate::{Error, Gray, Result};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Window {
     /// Separable periodic Hann window `w(x, y) = h(x) h(y)`, `h(i) = 0.5 - 0.5 cos(2 pi i / n)`
-    /// (evaluation.md: error images, which are not periodic).
+    /// (docs/results.md: error images, which are not periodic).
     Hann,
-    /// No window: the periodogram of a periodic tile (masks, algorithm.md section 2).
+    /// No window: the periodogram of a periodic tile (masks, docs/algorithm.md).
     None,
 }
 
@@ -84,7 +84,7 @@ impl std::fmt::Debug for SpectrumAccumulator {
 }
 
 impl SpectrumAccumulator {
-    /// An empty accumulator for tiles of side `tile` (>= 2; evaluation.md uses 64).
+    /// An empty accumulator for tiles of side `tile` (>= 2; docs/results.md uses 64).
     pub fn new(tile: usize, window: Window) -> Result<Self> {
         if tile < 2 {
             return Err(Error::Invalid(format!("tile size {tile} < 2")));

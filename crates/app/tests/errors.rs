@@ -1,4 +1,4 @@
-//! Every bad input of the README table "What happens when ...": the binary prints one
+//! Every bad input of the table of docs/errors.md: the binary prints one
 //! `error: ...` line naming the problem, exits with code 1 (never a panic), and leaves no
 //! output file behind.
 mod common;
@@ -292,7 +292,11 @@ fn out_of_memory_names_the_resource_or_the_passes() {
     let o = c.render(&[], &[("BLUESHIFT_TEST_SUBMIT_OOM", "sort_seeds")]);
     c.expect_error(
         &o,
-        &["out of memory while running pass(es)", "trace", "sort_seeds"],
+        &[
+            "out of memory while running pass(es)",
+            "trace",
+            "sort_seeds",
+        ],
     );
 }
 

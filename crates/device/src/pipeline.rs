@@ -139,7 +139,8 @@ fn resource_name(m: &Module, set: u32, binding: u32) -> Option<String> {
     let var = m.types_global_values.iter().find(|i| {
         i.class.opcode == Op::Variable
             && i.result_id.is_some_and(|id| {
-                decorated(id, Decoration::DescriptorSet, set) && decorated(id, Decoration::Binding, binding)
+                decorated(id, Decoration::DescriptorSet, set)
+                    && decorated(id, Decoration::Binding, binding)
             })
     })?;
     let id = var.result_id?;

@@ -1,5 +1,5 @@
 //! A swapchain for presenting to a [`Surface`]: format and present-mode choice as
-//! docs/vulkan-stack.md advises, recreation on resize / out-of-date / suboptimal, and a paused
+//! docs/build.md advises, recreation on resize / out-of-date / suboptimal, and a paused
 //! state for a zero-sized (minimised) window.
 //!
 //! Images are filled by copies (`TRANSFER_DST`), so any 8-bit RGBA/BGRA UNORM format works;
@@ -355,7 +355,7 @@ mod tests {
 
     #[test]
     fn unorm_is_chosen_over_srgb_listed_first() {
-        // Lavapipe's order (docs/vulkan-stack.md section 4).
+        // Lavapipe's order (docs/build.md).
         let offered = [
             fmt(vk::Format::B8G8R8A8_SRGB),
             fmt(vk::Format::B8G8R8A8_UNORM),

@@ -64,8 +64,8 @@ gpu_struct! {
     }
 }
 
-/// `HistoryParams::min_frames`, `max_frames` and `radius` of `sort-grid-history` (README,
-/// "History keys": single-pixel histories of one or two frames made pans worse; with the 3x3
+/// `HistoryParams::min_frames`, `max_frames` and `radius` of `sort-grid-history` (docs/algorithm.md,
+/// "key=history": single-pixel histories of one or two frames made pans worse; with the 3x3
 /// window a minimum of 4 frames beat 8 on pans, a maximum of 16 frames lost to 64 under
 /// rotation, and a 5x5 window gained nothing over 3x3).
 pub const HISTORY_MIN_FRAMES: u32 = 4;

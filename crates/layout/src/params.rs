@@ -36,7 +36,7 @@ gpu_struct! {
 
 /// The sorting pass counts the classes of at least SKEW_MIN_PIXELS pixels in a block, and
 /// those among them whose keys have a sample skewness |g| > SKEW_LIMIT: antithetic pairs
-/// cannot cancel a heavy tail (README, "Pairs where the errors are symmetric").
+/// cannot cancel a heavy tail (docs/algorithm.md, "pairs=adaptive").
 pub const SKEW_MIN_PIXELS: u32 = 8;
 pub const SKEW_LIMIT: f32 = 2.0;
 

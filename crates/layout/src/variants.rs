@@ -113,7 +113,11 @@ impl TraceVariant {
         }
         let hbo19 = self.sampler == Sampler::Hbo19;
         TraceVariant {
-            sampler: if hbo19 { Sampler::Hbo19 } else { Sampler::White },
+            sampler: if hbo19 {
+                Sampler::Hbo19
+            } else {
+                Sampler::White
+            },
             mask: true,
             textures: true,
             lambert: false,

@@ -133,7 +133,11 @@ impl PermutePasses {
             ("hist_mean", input.history),
             ("sort_stats", input.stats),
         ];
-        resources.extend(optional.into_iter().filter_map(|(n, b)| Some((n, b?.into()))));
+        resources.extend(
+            optional
+                .into_iter()
+                .filter_map(|(n, b)| Some((n, b?.into()))),
+        );
         let groups = block_groups(p)?;
         let pipeline = self.sort_pipeline(input.variant())?;
         rec.dispatch(pipeline, &resources, bytemuck::bytes_of(p), groups)?;

@@ -8,7 +8,7 @@
 //! lost: they come back into view like fresh seeds. The buffer is a permutation at all times.
 //!
 //! Frame t sorts against mask M_t(p) = M((p + o_t) mod N) with o_t = t*s mod N for the integer
-//! shift s the retarget table was optimised for (never a rounded R2 value: algorithm.md).
+//! shift s the retarget table was optimised for (never a rounded R2 value: docs/algorithm.md).
 mod cpu;
 mod edges;
 mod gpu;
@@ -150,7 +150,7 @@ pub fn block_pixels(p: &SortParams, index: u32) -> Vec<(u32, u32, usize)> {
 /// (B/2, B/2), (B/4, 3B/4), (3B/4, B/4), so every block border of one frame lies inside a block
 /// of the next, and seeds of a still image mix over more than two partitions. The offsets are
 /// even for B = 8: odd ones measured worse with the thin-class pairs, whose checkerboard is
-/// fixed to the screen (README, "Beyond the paper").
+/// fixed to the screen (docs/algorithm.md, "Extensions").
 pub fn grid_offset(frame: u64, block: u32) -> (u32, u32) {
     let (h, q) = (block / 2, block / 4);
     [(0, 0), (h, h), (q, q + h), (q + h, q)][(frame % 4) as usize]

@@ -111,7 +111,10 @@ impl Reprojection {
         let rows = ("rows", Res::from(&self.rows));
         let holes = ("holes", Res::from(&self.holes));
         let leftovers = ("leftovers", Res::from(&self.leftovers));
-        let (seeds_in, seeds_out) = (("seeds_in", seeds_in.into()), ("seeds_out", seeds_out.into()));
+        let (seeds_in, seeds_out) = (
+            ("seeds_in", seeds_in.into()),
+            ("seeds_out", seeds_out.into()),
+        );
         rec.dispatch(&self.claim_pass, &[src, claim], push, pixels)?;
         rec.dispatch(
             &self.gather_pass,

@@ -10,8 +10,9 @@ pub enum RenderError {
     /// The trace pass: a scene over the device's limits, or the loop guard.
     #[error(transparent)]
     Trace(#[from] blueshift_trace::TraceError),
+    /// A precomputed asset is missing, malformed, or does not fit the configuration.
     #[error("asset: {0}")]
-    Asset(String),
+    Asset(#[from] blueshift_assets::AssetError),
     #[error("{0}")]
     Invalid(String),
 }

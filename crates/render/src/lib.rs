@@ -14,7 +14,6 @@
 //! let image = r.read_ldr()?;
 //! # Ok(()) }
 //! ```
-mod assets;
 mod camera_path;
 mod config;
 mod error;
@@ -27,7 +26,11 @@ mod readback;
 mod seeds;
 mod stats;
 
-pub use assets::{MethodAssets, default_assets_dir};
+pub use blueshift_assets::{MethodAssets, default_assets_dir};
+pub use blueshift_trace::{
+    GBufferPass, LLVMPIPE_LOOP_LIMIT, SceneBuffers, SceneImages, TRACE_LOOP_GUARD, TraceError,
+    TraceVariant, gbuffer_cpu,
+};
 pub use camera_path::{CameraPath, Keyframe};
 pub use config::RenderConfig;
 pub use error::{RenderError, Result};
@@ -36,10 +39,6 @@ pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
 pub use seeds::{SeedMap, initial_seeds, tile_seeds};
 pub use stats::{FrameStats, LoopCount, LoopStats};
-pub use blueshift_trace::{
-    GBufferPass, LLVMPIPE_LOOP_LIMIT, SceneBuffers, SceneImages, TRACE_LOOP_GUARD, TraceError,
-    TraceVariant, gbuffer_cpu,
-};
 
 use blueshift_device::{Buffer, Device, MemoryLocation, Recorder};
 pub use blueshift_layout::params::TraceLoop;

@@ -54,6 +54,9 @@ pub enum Pairs {
     /// Every class while the sorting keys are about symmetric, none while many classes are
     /// heavy-tailed ([`crate::PairsGate`], from the sorting pass's counts).
     Adaptive,
+    /// Every class, always (experiments: the error becomes a checkerboard with mask-ordered
+    /// magnitudes where keys are heavy-tailed).
+    All,
 }
 
 /// A seed-permutation method: each field gates its own passes and shader code.
@@ -249,6 +252,7 @@ impl Method {
         match self.permutation().map(|p| p.pairs) {
             Some(Pairs::Thin) => 1,
             Some(Pairs::Adaptive) => gate.pairs(),
+            Some(Pairs::All) => 2,
             _ => 0,
         }
     }

@@ -8,7 +8,7 @@ const FIELDS: [(&str, &[&str]); 5] = [
     ("grouping", &["blocks", "surfaces"]),
     ("transport", &["none", "retarget", "grid"]),
     ("motion", &["none", "reproject"]),
-    ("pairs", &["off", "thin", "adaptive"]),
+    ("pairs", &["off", "thin", "adaptive", "all"]),
 ];
 
 /// (field, value) of each field of `p`, in the order of [`FIELDS`].
@@ -42,7 +42,7 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
         "grouping" => p.grouping = [Grouping::Blocks, Grouping::Surfaces][i],
         "transport" => p.transport = [Transport::None, Transport::Retarget, Transport::Grid][i],
         "motion" => p.motion = [Motion::None, Motion::Reproject][i],
-        _ => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive][i],
+        _ => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive, Pairs::All][i],
     }
     Ok(())
 }

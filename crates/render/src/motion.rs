@@ -1,4 +1,4 @@
-//! Our extensions of the paper's frame loop (algorithm.md, "Motion and failure cases"):
+//! Our extensions of the paper's frame loop (docs/algorithm.md, "Extensions"):
 //! G-buffer, edge-aware grouping (classes for the sorting pass) and bijective seed
 //! reprojection, with the mask offset following the image's mean motion.
 use crate::{GBufferPass, RenderError, Renderer, Result, SceneBuffers, SceneImages};

@@ -2,7 +2,7 @@
 //! about symmetric, in none while many classes have heavy-tailed keys.
 //!
 //! Why: pairs pin a pixel's key next to its opposite, which cancels symmetric errors better
-//! than a blue-noise mask does (direct light on the box and the edges scene: README "Pairs
+//! than a blue-noise mask does (direct light on the box and the edges scene: docs/algorithm.md "pairs=adaptive"
 //! where the errors are symmetric"), but cannot cancel a heavy tail (one firefly next to the least negative error), which the
 //! mask at least spreads apart: on the box at 8 bounces and 1 spp, pairs in every class lost
 //! 0.02-0.03 of P1 against pairs in thin classes, and no pairs at all won 0.005-0.016. The

@@ -69,10 +69,10 @@ pub(crate) fn seeds_of(
 }
 
 fn no_keys() -> RenderError {
-    RenderError::Asset(
+    RenderError::Asset(blueshift_assets::AssetError::Missing(
         "no HBO+19 key tables (assets/keys/hbo19_*.bin; `blueshift-tools assets` makes them)"
             .into(),
-    )
+    ))
 }
 
 /// The key buffer contents for `cfg`: the table for its spp, or a one-key placeholder when the

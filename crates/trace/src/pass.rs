@@ -53,7 +53,11 @@ pub fn next_dispatch_vertices(samples: u32, bounces: u32, iterations: u32) -> u3
 
 /// The variant for these push constants over these scene images: llvmpipe executes both
 /// sides of every branch, so each variant compiles out what the method and scene never use.
-pub fn trace_variant(p: &TraceParams, scene: &SceneImages, loop_stats: bool) -> Result<TraceVariant> {
+pub fn trace_variant(
+    p: &TraceParams,
+    scene: &SceneImages,
+    loop_stats: bool,
+) -> Result<TraceVariant> {
     let sampler = Sampler::ALL
         .into_iter()
         .find(|&s| s as u32 == p.sampler_kind)

@@ -36,12 +36,6 @@ struct HistoryParams {
 };
 const uint HISTORY_PARAMS_SIZE = 28;
 
-struct OracleParams {
-    uint width; // offset 0, size 4
-    uint height; // offset 4, size 4
-};
-const uint ORACLE_PARAMS_SIZE = 8;
-
 const uint REPROJECT_NONE = 4294967295u;
 const uint HISTORY_MIN_FRAMES = 4u;
 const uint HISTORY_MAX_FRAMES = 64u;

@@ -44,7 +44,7 @@ pub(crate) fn figures(a: &FiguresArgs) -> anyhow::Result<()> {
     let scale = (256 / n).max(1) as u32;
     let mut series = Vec::new();
     for (name, m) in &masks {
-        let g = m.to_gray();
+        let g = Gray::from(m);
         let tex = image::GrayImage::from_fn(n as u32, n as u32, |x, y| {
             image::Luma([(g.at(x as usize, y as usize) * 255.0).round() as u8])
         });

@@ -35,13 +35,13 @@ pub(crate) fn analyse(
             Some(n) => {
                 let v = load_stbn(path, n)?;
                 let s = (0..v.t)
-                    .map(|s| v.slice(s).map(|m| m.to_gray()))
+                    .map(|s| v.slice(s).map(|m| Gray::from(&m)))
                     .collect::<Result<_, _>>()?;
                 (n, s)
             }
             None => {
                 let m = load_mask(path)?;
-                (m.n, vec![m.to_gray()])
+                (m.n, vec![Gray::from(&m)])
             }
         };
         let mut acc = SpectrumAccumulator::new(n, Window::None)?;

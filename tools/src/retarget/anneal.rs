@@ -1,5 +1,5 @@
 //! Simulated annealing (the paper's solver, after Georgiev & Fajardo 2016; working choices of
-//! algorithm.md section 1).
+//! docs/algorithm.md).
 //!
 //! Start from the identity. Each proposal picks a cell `u` and an offset `delta` of the disc
 //! (uniformly), and proposes to swap the destinations of `u` and `w = u + delta`. A swap is

@@ -1,4 +1,4 @@
-//! Retargeting permutations (algorithm.md sections 1 and 7).
+//! Retargeting permutations (docs/algorithm.md).
 //!
 //! The problem: find a permutation `pi` of the `n x n` torus with toroidal displacement
 //! `d(u) = pi(u) - u` inside the Euclidean disc `|d|^2 <= R^2`, minimising

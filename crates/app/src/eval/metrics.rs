@@ -1,4 +1,4 @@
-//! Per-run metric accumulation (evaluation.md): RMSE, LF, P1, P2 over a frame window, on all,
+//! Per-run metric accumulation (docs/results.md): RMSE, LF, P1, P2 over a frame window, on all,
 //! smooth and edge pixels, for raw frames and their exponential moving average (alpha 0.1).
 use anyhow::Result;
 use blueshift_analysis::{
@@ -7,7 +7,7 @@ use blueshift_analysis::{
 };
 use serde::Serialize;
 
-/// Spectrum tile edge (evaluation.md: 64x64 tiles).
+/// Spectrum tile edge (docs/results.md: 64x64 tiles).
 pub const TILE: usize = 64;
 /// EMA weight of the newest frame.
 pub const EMA_ALPHA: f32 = 0.1;

@@ -1,5 +1,5 @@
 //! `blueshift eval`: renders a camera path with several methods, renders references, and
-//! writes a report (report.md, report.json, PNG figures) with the metrics of evaluation.md.
+//! writes a report (report.md, report.json, PNG figures) with the metrics of docs/results.md.
 mod figures;
 mod metrics;
 mod reference;

@@ -228,8 +228,8 @@ fn markdown(
             // Every pass a method adds to the path tracer.
             let perm: f64 = blueshift_render::PERMUTE_PASSES
                 .iter()
-            .map(|p| r.pass_ms.get(*p).copied().unwrap_or(0.0))
-            .sum();
+                .map(|p| r.pass_ms.get(*p).copied().unwrap_or(0.0))
+                .sum();
             let overhead = if trace > 0.0 && perm > 0.0 {
                 format!("{:.2}%", 100.0 * perm / trace)
             } else {

@@ -239,13 +239,19 @@ mod tests {
     fn title_shows_settings_and_pass_times() {
         let stats = FrameStats {
             frame: 3,
-            passes: ["trace", "sort_seeds", "retarget_seeds", "accumulate", "tonemap"]
-                .iter()
-                .map(|n| PassTime {
-                    name: n.to_string(),
-                    ms: 2.0,
-                })
-                .collect(),
+            passes: [
+                "trace",
+                "sort_seeds",
+                "retarget_seeds",
+                "accumulate",
+                "tonemap",
+            ]
+            .iter()
+            .map(|n| PassTime {
+                name: n.to_string(),
+                ms: 2.0,
+            })
+            .collect(),
             trace_loop_iterations: 0,
             loops: None,
         };

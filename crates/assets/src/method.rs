@@ -1,0 +1,146 @@
+//! The precomputed textures the methods need, loaded from `assets/`.
+use crate::error::{AssetError, Result};
+use crate::formats::{load_mask, load_retarget, load_stbn};
+use blueshift_sampling::hbo19::KeyTable;
+use std::path::{Path, PathBuf};
+
+/// Mask tile, retarget table and spatio-temporal mask, flattened for upload.
+#[derive(Debug, Clone)]
+pub struct MethodAssets {
+    /// Mask tile edge N.
+    pub n: u32,
+    /// N*N void-and-cluster ranks.
+    pub mask: Vec<u32>,
+    /// Retarget displacement per mask texel.
+    pub table: Vec<[i32; 2]>,
+    /// The integer shift s the table was optimised for.
+    pub shift: (u32, u32),
+    /// Spatio-temporal mask: edge, slices, ranks (slice-major).
+    pub stbn_n: u32,
+    pub stbn_frames: u32,
+    pub stbn: Vec<u32>,
+    /// HBO+19 key tables of one tile, one per sample count, ascending spp (may be empty:
+    /// then the `hbo19` sampler is unavailable).
+    pub keys: Vec<KeyTable>,
+}
+
+/// `BLUESHIFT_ASSETS`, else the nearest `assets/` (holding a MANIFEST) above the running cargo
+/// package or the current directory, else the one next to where this crate was compiled.
+/// (Looked up at run time so a moved checkout sharing a target dir finds its own assets.)
+pub fn default_assets_dir() -> PathBuf {
+    if let Some(d) = std::env::var_os("BLUESHIFT_ASSETS") {
+        return PathBuf::from(d);
+    }
+    let starts = [
+        std::env::var_os("CARGO_MANIFEST_DIR").map(PathBuf::from),
+        std::env::current_dir().ok(),
+    ];
+    starts
+        .into_iter()
+        .flatten()
+        .flat_map(|s| s.ancestors().map(Path::to_path_buf).collect::<Vec<_>>())
+        .map(|a| a.join("assets"))
+        .find(|d| d.join("MANIFEST").is_file())
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets"))
+}
+
+impl MethodAssets {
+    /// Loads the 64x64 mask, its retarget table, the 64x64xT spatio-temporal mask and the
+    /// HBO+19 key tables `keys/hbo19_*.bin`.
+    pub fn load(dir: &Path) -> Result<Self> {
+        let a = Self::load_files(
+            &dir.join("masks/bn64.r16"),
+            &dir.join("retarget/bn64_s48_36_r6.bin"),
+            &dir.join("masks/stbn64x32.r16"),
+            64,
+        )?;
+        a.with_keys_dir(&dir.join("keys"))
+    }
+
+    /// Adds every `hbo19_*.bin` key table of `dir` (none if `dir` does not exist). The tables
+    /// must share tile and pairs (the seed map depends on the tile) and differ in spp.
+    pub fn with_keys_dir(mut self, dir: &Path) -> Result<Self> {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return Ok(self);
+        };
+        let mut paths: Vec<_> = entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| {
+                p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with("hbo19_") && n.ends_with(".bin"))
+            })
+            .collect();
+        paths.sort();
+        let mut keys = Vec::new();
+        for p in &paths {
+            keys.push(KeyTable::load(p)?);
+        }
+        self.set_keys(keys)?;
+        Ok(self)
+    }
+
+    /// Replaces the key tables after checking they fit together.
+    pub fn set_keys(&mut self, mut keys: Vec<KeyTable>) -> Result<()> {
+        keys.sort_by_key(|k| k.spp);
+        if let Some(first) = keys.first() {
+            for k in &keys[1..] {
+                if (k.tile, k.pairs) != (first.tile, first.pairs) {
+                    return Err(AssetError::Mismatch(format!(
+                        "HBO+19 key tables disagree: tile {} / {} pairs vs tile {} / {} pairs",
+                        first.tile, first.pairs, k.tile, k.pairs
+                    )));
+                }
+            }
+            if keys.windows(2).any(|w| w[0].spp == w[1].spp) {
+                return Err(AssetError::Mismatch(
+                    "two HBO+19 key tables for the same spp".into(),
+                ));
+            }
+        }
+        self.keys = keys;
+        Ok(())
+    }
+
+    /// The key table for `spp`: the largest spp not above it, else the smallest.
+    pub fn keys_for(&self, spp: u32) -> Option<&KeyTable> {
+        self.keys
+            .iter()
+            .rev()
+            .find(|k| k.spp <= spp)
+            .or(self.keys.first())
+    }
+
+    /// Loads explicit files; the table must be made for a mask of the same size.
+    pub fn load_files(mask: &Path, table: &Path, stbn: &Path, stbn_n: usize) -> Result<Self> {
+        // The loaders' errors already name the file.
+        let m = load_mask(mask)?;
+        let t = load_retarget(table)?;
+        if t.n != m.n {
+            return Err(AssetError::Mismatch(format!(
+                "retarget table {} is for a {}x{} mask but mask {} is {}x{}",
+                table.display(),
+                t.n,
+                t.n,
+                mask.display(),
+                m.n,
+                m.n
+            )));
+        }
+        let v = load_stbn(stbn, stbn_n)?;
+        Ok(Self {
+            n: m.n as u32,
+            mask: m.ranks.iter().map(|&r| r as u32).collect(),
+            table: t
+                .offsets
+                .iter()
+                .map(|&(dx, dy)| [dx as i32, dy as i32])
+                .collect(),
+            shift: (t.shift.0 as u32, t.shift.1 as u32),
+            stbn_n: v.n as u32,
+            stbn_frames: v.t as u32,
+            stbn: v.ranks.iter().map(|&r| r as u32).collect(),
+            keys: Vec::new(),
+        })
+    }
+}

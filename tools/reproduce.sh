@@ -1,0 +1,189 @@
+#!/usr/bin/env bash
+# Re-runs the evaluations behind docs/results.md, rewrites its generated tables (the text
+# between <!-- reproduce:NAME begin --> and <!-- reproduce:NAME end -->) and refreshes the
+# curated figures in docs/figures/.
+#
+#   bash tools/reproduce.sh               all runs (about 10-25 minutes each on 2 CPU cores)
+#   bash tools/reproduce.sh --only NAME   one run: cornell or textured (RUNS below)
+#   bash tools/reproduce.sh --quick       smoke run: 12 frames, one sequence; writes
+#                                         out/results/results.md and out/results/figures/,
+#                                         leaves docs/ untouched
+#
+# Eval outputs go to out/results/NAME/ (report.md, report.json, PNGs). Nothing is left
+# half-written: each run goes to a staging directory that replaces the old one only when it
+# succeeds, and docs files are written to a temporary file and then renamed.
+# Needs only bash, coreutils and awk (besides what scripts/setup.sh installs).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# name | arguments of `blueshift eval` besides the common ones below
+RUNS=(
+  "cornell|--methods white,sobol,hbo19,mask-r2,stbn,sort,sort-retarget,sort-grid-history,sort-grid-adaptive --camera static,pan:8,orbit:1 --bounces 1,8"
+  "textured|--scene textured --methods white,sobol,stbn,sort-retarget,sort-grid-history,sort-grid-adaptive --camera static,orbit:1 --bounces 1"
+)
+# name | file in the run's output | name under docs/figures/
+FIGURES=(
+  "cornell|static_b1_spp1_white_error.png|cornell-direct-static_white_error.png"
+  "cornell|static_b1_spp1_sort-retarget_error.png|cornell-direct-static_sort-retarget_error.png"
+  "cornell|static_b1_spp1_sort-grid-adaptive_error.png|cornell-direct-static_sort-grid-adaptive_error.png"
+  "cornell|static_b1_spp1_radial.png|cornell-direct-static_radial.png"
+  "cornell|pan-8_b1_spp1_p1.png|cornell-direct-pan8_p1.png"
+  "textured|orbit-1_b1_spp1_frames.png|textured-orbit_frames.png"
+)
+
+usage() { sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; }
+
+quick=0
+only=""
+while (($#)); do
+  case "$1" in
+    --quick) quick=1 ;;
+    --only) [ $# -ge 2 ] || { echo "reproduce: --only needs a NAME" >&2; exit 2; }; only="$2"; shift ;;
+    --only=*) only="${1#--only=}" ;;
+    -h | --help) usage; exit 0 ;;
+    *) echo "reproduce: unknown argument '$1'" >&2; usage >&2; exit 2 ;;
+  esac
+  shift
+done
+
+names=()
+for r in "${RUNS[@]}"; do names+=("${r%%|*}"); done
+if [ -n "$only" ]; then
+  ok=0
+  for n in "${names[@]}"; do [ "$n" = "$only" ] && ok=1; done
+  if [ "$ok" -ne 1 ]; then
+    echo "reproduce: unknown run '$only' (runs: ${names[*]})" >&2
+    exit 2
+  fi
+fi
+
+if ((quick)); then
+  common="--spp 1 --frames 12 --width 128 --height 128 --sequences 1"
+  results_md=out/results/results.md
+  figures_dir=out/results/figures
+else
+  common="--spp 1 --frames 48 --width 128 --height 128 --sequences 2"
+  results_md=docs/results.md
+  figures_dir=docs/figures
+fi
+
+for m in begin end; do
+  for n in "${names[@]}"; do
+    if ! grep -qx "<!-- reproduce:$n $m -->" docs/results.md; then
+      echo "reproduce: docs/results.md lacks the marker <!-- reproduce:$n $m -->" >&2
+      exit 1
+    fi
+  done
+done
+
+source scripts/setup.sh
+cargo build --release --locked -p blueshift
+bin="$CARGO_TARGET_DIR/release/blueshift"
+mkdir -p out/results "$figures_dir"
+
+tmpfiles=()
+cleanup() { ((${#tmpfiles[@]})) && rm -rf "${tmpfiles[@]}"; return 0; }
+trap cleanup EXIT
+
+# Pivot tables of one report.md: for each column named in COLS, a table with one row per
+# method and one column per configuration.
+tables() { # report.md
+  awk '
+    BEGIN {
+      FS = " *[|] *"
+      ncol = split("P1|EMA P1|RMSE|FLIP (accum)", cols, "|")
+      title["P1"] = "P1 ratio to `white` per frame (frames in the metrics window; ± standard error over sequences)"
+      title["EMA P1"] = "EMA P1 ratio to `white`: the same metric on the exponential moving average of the frames (alpha 0.1)"
+      title["RMSE"] = "RMSE ratio to `white` (the permutation only moves error: should stay within 3%)"
+      title["FLIP (accum)"] = "FLIP of the accumulated image (running mean since the camera last moved) at the last frame, absolute: lower is better"
+    }
+    NR == 3 { info = $0; sub(/; commit [^;]*;/, ";", info) }
+    /^## / { cfg = substr($0, 4); ncfg++; cfgs[ncfg] = cfg; next }
+    /^[|] method [|]/ { for (i = 2; i < NF; i++) at[$i] = i; next }
+    /^[|]---/ { next }
+    /^[|] / && ncfg > 0 {
+      m = $2
+      if (!(m in seen)) { seen[m] = 1; nm++; ms[nm] = m }
+      for (c = 1; c <= ncol; c++) v[cols[c], m, cfg] = $(at[cols[c]])
+    }
+    END {
+      if (nm == 0) { print "reproduce: no tables in the report" > "/dev/stderr"; exit 1 }
+      print "Run: " info
+      for (c = 1; c <= ncol; c++) {
+        print ""
+        print "**" title[cols[c]] "**"
+        print ""
+        line = "| method |"; rule = "|---|"
+        for (k = 1; k <= ncfg; k++) { line = line " " cfgs[k] " |"; rule = rule "---|" }
+        print line; print rule
+        for (i = 1; i <= nm; i++) {
+          line = "| " ms[i] " |"
+          for (k = 1; k <= ncfg; k++) {
+            x = v[cols[c], ms[i], cfgs[k]]
+            line = line " " (x == "" ? "-" : x) " |"
+          }
+          print line
+        }
+      }
+    }' "$1"
+}
+
+# Replaces the text between the markers of NAME in FILE by the contents of BODY, in place
+# (through a temporary file).
+splice() { # name file body
+  local tmp
+  tmp="$(mktemp "$2.XXXXXX.tmp")"
+  tmpfiles+=("$tmp")
+  chmod --reference="$2" "$tmp"
+  awk -v begin="<!-- reproduce:$1 begin -->" -v end="<!-- reproduce:$1 end -->" -v body="$3" '
+    $0 == begin { print; while ((getline line < body) > 0) print line; skip = 1; next }
+    $0 == end { skip = 0 }
+    !skip { print }' "$2" > "$tmp"
+  mv "$tmp" "$2"
+}
+
+# The new results.md is assembled in a temporary file beside its destination.
+work="$(mktemp "$results_md.XXXXXX.tmp")"
+tmpfiles+=("$work")
+cp docs/results.md "$work"
+chmod 644 "$work"
+
+for r in "${RUNS[@]}"; do
+  name="${r%%|*}"
+  args="${r#*|}"
+  [ -n "$only" ] && [ "$name" != "$only" ] && continue
+  out="out/results/$name"
+  stage="out/results/.$name.new"
+  rm -rf "$stage"
+  tmpfiles+=("$stage")
+  echo "== $name: blueshift eval $args $common"
+  # shellcheck disable=SC2086 # the argument lists are word-split on purpose
+  "$bin" eval $args $common --out "$stage"
+  rm -rf "$out"
+  mv "$stage" "$out"
+
+  body="$(mktemp "out/results/.$name.body.XXXXXX")"
+  tmpfiles+=("$body")
+  {
+    echo
+    echo "Command: \`blueshift eval $args $common --out out/results/$name\`"
+    echo
+    tables "$out/report.md"
+    echo
+  } > "$body"
+  splice "$name" "$work" "$body"
+
+  for f in "${FIGURES[@]}"; do
+    IFS='|' read -r fname src dst <<< "$f"
+    [ "$fname" = "$name" ] || continue
+    if [ -f "$out/$src" ]; then
+      cp "$out/$src" "$figures_dir/.$dst.tmp"
+      mv "$figures_dir/.$dst.tmp" "$figures_dir/$dst"
+    else
+      echo "reproduce: warning: $out/$src not found, $figures_dir/$dst not updated" >&2
+    fi
+  done
+done
+
+mv "$work" "$results_md"
+echo "reproduce: wrote $results_md and $figures_dir/"
