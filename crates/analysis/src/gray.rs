@@ -1,6 +1,5 @@
 //! A single-channel f32 image, luminance, image loading and atomic file writes.
 
-use std::io::Write;
 use std::path::Path;
 
 use crate::{Error, Result};
@@ -150,24 +149,13 @@ pub(crate) fn save_image(img: &image::DynamicImage, path: &Path) -> Result<()> {
 }
 
 /// Writes `bytes` to `path` through a temporary file in the same directory and a rename, so a
-/// failure never leaves a half-written output. The parent directory must exist.
+/// failure never leaves a half-written output (`blueshift_assets::write_atomic`, with this
+/// crate's error). The parent directory must exist.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(path, e))?;
-    tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
-    #[cfg(unix)]
-    {
-        // NamedTempFile is created 0600; outputs are ordinary files.
-        use std::os::unix::fs::PermissionsExt;
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))
-            .map_err(|e| Error::io(path, e))?;
-    }
-    tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
-    Ok(())
+    blueshift_assets::write_atomic(path, bytes).map_err(|e| match e {
+        blueshift_assets::AssetError::Io { path, source } => Error::Io { path, source },
+        other => Error::Invalid(other.to_string()),
+    })
 }
 
 #[cfg(test)]

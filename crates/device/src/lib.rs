@@ -30,7 +30,7 @@ pub use gpu_allocator::MemoryLocation;
 pub use instance::{Instance, InstanceDesc, ValidationLog};
 pub use memory::{Buffer, Image};
 pub use pipeline::{
-    Binding, BindingKind, ComputePipeline, ShaderInterface, check_bindings, reflect,
+    Binding, BindingKind, ComputePipeline, PipelineCache, ShaderInterface, check_bindings, reflect,
 };
 pub use surface::Surface;
 pub use swapchain::{

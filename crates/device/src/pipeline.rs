@@ -8,8 +8,8 @@
 use crate::device::Device;
 use crate::error::{DeviceError, Result, VkContext};
 use ash::vk;
-use rspirv_reflect::rspirv::dr::{Module, Operand};
-use rspirv_reflect::spirv::Op;
+use rspirv_reflect::rspirv::dr::{Instruction, Module, Operand};
+use rspirv_reflect::spirv::{Decoration, Op};
 use rspirv_reflect::{BindingCount, DescriptorType, Reflection};
 
 /// The kind of resource at a binding.
@@ -121,21 +121,20 @@ pub fn reflect(shader: &str, spirv: &[u32]) -> Result<ShaderInterface> {
 }
 
 /// Whether operand `at` of `i` is the id `id`.
-fn operand_is(i: &rspirv_reflect::rspirv::dr::Instruction, at: usize, id: u32) -> bool {
+fn operand_is(i: &Instruction, at: usize, id: u32) -> bool {
     matches!(i.operands.get(at), Some(Operand::IdRef(x)) if *x == id)
 }
 
 /// The name of the resource at (set, binding): the variable's OpName, else (an anonymous block)
 /// the OpMemberName of its block's first member.
 fn resource_name(m: &Module, set: u32, binding: u32) -> Option<String> {
-    let decorated = |id: u32, d: rspirv_reflect::spirv::Decoration, v: u32| {
+    let decorated = |id: u32, d: Decoration, v: u32| {
         m.annotations.iter().any(|a| {
             operand_is(a, 0, id)
                 && matches!(a.operands.get(1), Some(Operand::Decoration(x)) if *x == d)
                 && matches!(a.operands.get(2), Some(Operand::LiteralBit32(x)) if *x == v)
         })
     };
-    use rspirv_reflect::spirv::Decoration;
     let var = m.types_global_values.iter().find(|i| {
         i.class.opcode == Op::Variable
             && i.result_id.is_some_and(|id| {
@@ -144,7 +143,7 @@ fn resource_name(m: &Module, set: u32, binding: u32) -> Option<String> {
             })
     })?;
     let id = var.result_id?;
-    let string = |i: &rspirv_reflect::rspirv::dr::Instruction, at: usize| match i.operands.get(at) {
+    let string = |i: &Instruction, at: usize| match i.operands.get(at) {
         Some(Operand::LiteralString(s)) if !s.is_empty() => Some(s.clone()),
         _ => None,
     };
@@ -362,5 +361,38 @@ impl Drop for ComputePipeline {
             d.destroy_pipeline_layout(self.layout, None);
             d.destroy_descriptor_set_layout(self.set_layout, None);
         }
+    }
+}
+
+/// Pipelines of one pass's shader variants, each created on first use (lavapipe compiles a
+/// pipeline on its first dispatch, so variants a run never needs cost nothing).
+#[derive(Debug)]
+pub struct PipelineCache<K> {
+    pipelines: Vec<(K, ComputePipeline)>,
+}
+
+impl<K> Default for PipelineCache<K> {
+    fn default() -> Self {
+        Self {
+            pipelines: Vec::new(),
+        }
+    }
+}
+
+impl<K: PartialEq + Copy> PipelineCache<K> {
+    /// The pipeline of `key`, made by `create` the first time it is asked for.
+    pub fn get_or_create<E>(
+        &mut self,
+        key: K,
+        create: impl FnOnce(K) -> std::result::Result<ComputePipeline, E>,
+    ) -> std::result::Result<&ComputePipeline, E> {
+        let i = match self.pipelines.iter().position(|(k, _)| *k == key) {
+            Some(i) => i,
+            None => {
+                self.pipelines.push((key, create(key)?));
+                self.pipelines.len() - 1
+            }
+        };
+        Ok(&self.pipelines[i].1)
     }
 }

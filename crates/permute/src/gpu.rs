@@ -1,7 +1,7 @@
 //! The GPU passes: `permute/classify_pixels`, `permute/sort_seeds` and
 //! `permute/retarget_seeds` (seed reprojection: reproject_gpu.rs).
 use crate::{PermuteError, Result, RetargetParams, SortParams};
-use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder, Res};
+use blueshift_device::{Binding, Buffer, ComputePipeline, Device, PipelineCache, Recorder, Res};
 pub use blueshift_layout::variants::SortVariant;
 
 /// What the sorting pass ranks, and where it counts skewed classes. The optional inputs
@@ -37,12 +37,25 @@ impl SortInput<'_> {
     }
 }
 
+/// Bindings of every sorting variant.
+const SORT_BINDINGS: [Binding; 3] = [
+    Binding::storage(0, "estimate"),
+    Binding::storage(1, "mask"),
+    Binding::storage(2, "seeds"),
+];
+/// Bindings of the extensions, in the order of `SortInput`'s classes, history and stats.
+const SORT_OPTIONAL: [Binding; 3] = [
+    Binding::storage(3, "classes"),
+    Binding::storage(4, "hist_mean"),
+    Binding::storage(5, "sort_stats"),
+];
+
 /// Pipelines of both permutation passes.
 pub struct PermutePasses {
     dev: Device,
     classify: ComputePipeline,
     /// Sorting-pass variants created so far.
-    sort: Vec<(SortVariant, ComputePipeline)>,
+    sort: PipelineCache<SortVariant>,
     retarget: ComputePipeline,
 }
 
@@ -85,34 +98,9 @@ impl PermutePasses {
         Ok(Self {
             dev: dev.clone(),
             classify,
-            sort: Vec::new(),
+            sort: PipelineCache::default(),
             retarget,
         })
-    }
-
-    /// The sorting pipeline of `v`, created on first use.
-    fn sort_pipeline(&mut self, v: SortVariant) -> Result<&ComputePipeline> {
-        let i = match self.sort.iter().position(|(x, _)| *x == v) {
-            Some(i) => i,
-            None => {
-                let mut bindings = vec![
-                    Binding::storage(0, "estimate"),
-                    Binding::storage(1, "mask"),
-                    Binding::storage(2, "seeds"),
-                ];
-                let optional = [
-                    (v.classes, Binding::storage(3, "classes")),
-                    (v.history, Binding::storage(4, "hist_mean")),
-                    (v.skew, Binding::storage(5, "sort_stats")),
-                ];
-                bindings.extend(optional.into_iter().filter(|(on, _)| *on).map(|(_, b)| b));
-                let push = std::mem::size_of::<SortParams>();
-                let p = pipeline(&self.dev, &v.shader(), &bindings, push)?;
-                self.sort.push((v, p));
-                self.sort.len() - 1
-            }
-        };
-        Ok(&self.sort[i].1)
     }
 
     /// Records the sorting pass (in place on `seeds`), in the variant `input` asks for.
@@ -128,18 +116,26 @@ impl PermutePasses {
             ("mask", input.mask.into()),
             ("seeds", seeds.into()),
         ];
-        let optional = [
-            ("classes", input.classes),
-            ("hist_mean", input.history),
-            ("sort_stats", input.stats),
-        ];
-        resources.extend(
-            optional
-                .into_iter()
-                .filter_map(|(n, b)| Some((n, b?.into()))),
-        );
+        let optional = [input.classes, input.history, input.stats];
+        for (b, buffer) in SORT_OPTIONAL.iter().zip(optional) {
+            resources.extend(buffer.map(|buf| (b.name, buf.into())));
+        }
         let groups = block_groups(p)?;
-        let pipeline = self.sort_pipeline(input.variant())?;
+        let dev = &self.dev;
+        let pipeline = self.sort.get_or_create(input.variant(), |v| {
+            let on = [v.classes, v.history, v.skew];
+            let optional = SORT_OPTIONAL.iter().zip(on).filter(|(_, on)| *on);
+            let bindings: Vec<Binding> = SORT_BINDINGS
+                .into_iter()
+                .chain(optional.map(|(b, _)| *b))
+                .collect();
+            pipeline(
+                dev,
+                &v.shader(),
+                &bindings,
+                std::mem::size_of::<SortParams>(),
+            )
+        })?;
         rec.dispatch(pipeline, &resources, bytemuck::bytes_of(p), groups)?;
         Ok(())
     }

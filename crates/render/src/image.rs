@@ -36,13 +36,12 @@ impl ImagePasses {
         estimate: &Buffer,
         accum: &Buffer,
     ) -> Result<()> {
-        rec.dispatch(
+        per_pixel(
+            rec,
             &self.accumulate,
-            &[("estimate", estimate.into()), ("accum", accum.into())],
-            bytemuck::bytes_of(p),
-            pixel_groups(p),
-        )?;
-        Ok(())
+            p,
+            [("estimate", estimate), ("accum", accum)],
+        )
     }
 
     /// Records the sRGB tonemap of `source` into packed RGBA8.
@@ -53,17 +52,22 @@ impl ImagePasses {
         source: &Buffer,
         ldr: &Buffer,
     ) -> Result<()> {
-        rec.dispatch(
-            &self.tonemap,
-            &[("source", source.into()), ("ldr", ldr.into())],
-            bytemuck::bytes_of(p),
-            pixel_groups(p),
-        )?;
-        Ok(())
+        per_pixel(rec, &self.tonemap, p, [("source", source), ("ldr", ldr)])
     }
 }
 
-/// One invocation per pixel, 64 per workgroup.
-fn pixel_groups(p: &ImageParams) -> [u32; 3] {
-    [(p.width * p.height).div_ceil(64), 1, 1]
+/// Dispatches `pipeline` over `p`'s pixels, one invocation each (64 per workgroup).
+fn per_pixel(
+    rec: &mut Recorder,
+    pipeline: &ComputePipeline,
+    p: &ImageParams,
+    [a, b]: [(&str, &Buffer); 2],
+) -> Result<()> {
+    rec.dispatch(
+        pipeline,
+        &[(a.0, a.1.into()), (b.0, b.1.into())],
+        bytemuck::bytes_of(p),
+        [(p.width * p.height).div_ceil(64), 1, 1],
+    )?;
+    Ok(())
 }

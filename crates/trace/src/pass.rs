@@ -4,7 +4,7 @@
 use crate::buffers::SceneBuffers;
 use crate::images::SceneImages;
 use crate::{Result, TraceError};
-use blueshift_device::{Binding, Buffer, ComputePipeline, Device, Recorder, Res};
+use blueshift_device::{Binding, Buffer, ComputePipeline, Device, PipelineCache, Recorder, Res};
 use blueshift_layout::params::{MASK_MODE_NONE, TRACE_GROUP_X, TRACE_GROUP_Y, TraceParams};
 use blueshift_layout::variants::TraceVariant;
 use blueshift_sampling::Sampler;
@@ -53,6 +53,7 @@ pub fn next_dispatch_vertices(samples: u32, bounces: u32, iterations: u32) -> u3
 
 /// The variant for these push constants over these scene images: llvmpipe executes both
 /// sides of every branch, so each variant compiles out what the method and scene never use.
+/// (With loop statistics, one shader serves every mask, texture and BRDF choice.)
 pub fn trace_variant(
     p: &TraceParams,
     scene: &SceneImages,
@@ -62,13 +63,14 @@ pub fn trace_variant(
         .into_iter()
         .find(|&s| s as u32 == p.sampler_kind)
         .ok_or_else(|| TraceError::Invalid(format!("sampler kind {}", p.sampler_kind)))?;
-    Ok(TraceVariant {
+    let v = TraceVariant {
         sampler,
         mask: p.mask_mode != MASK_MODE_NONE,
         textures: scene.textured,
         lambert: scene.lambert,
         loop_stats,
-    })
+    };
+    Ok(v.canonical())
 }
 
 /// A frame whose trace pass counted `iterations` loop iterations in its costliest SIMD batch
@@ -83,7 +85,7 @@ pub fn check_loop_guard(iterations: u32, guard: u32) -> Result<()> {
 /// The path tracer's pipelines, created as frames first need them.
 pub struct TracePass {
     dev: Device,
-    pipelines: Vec<(TraceVariant, ComputePipeline)>,
+    pipelines: PipelineCache<TraceVariant>,
 }
 
 impl std::fmt::Debug for TracePass {
@@ -130,23 +132,8 @@ impl TracePass {
     pub fn new(dev: &Device) -> Self {
         Self {
             dev: dev.clone(),
-            pipelines: Vec::new(),
+            pipelines: PipelineCache::default(),
         }
-    }
-
-    /// The path-tracer pipeline of `variant`, created on first use (lavapipe compiles a
-    /// pipeline on its first dispatch, so unused variants cost nothing).
-    fn pipeline(&mut self, variant: TraceVariant) -> Result<&ComputePipeline> {
-        let i = match self.pipelines.iter().position(|(v, _)| *v == variant) {
-            Some(i) => i,
-            None => {
-                let (name, push) = (variant.shader(), size_of::<TraceParams>());
-                let p = blueshift_shaders::pipeline(&self.dev, &name, &TRACE_BINDINGS, push)?;
-                self.pipelines.push((variant, p));
-                self.pipelines.len() - 1
-            }
-        };
-        Ok(&self.pipelines[i].1)
     }
 
     /// Records the path-tracing pass writing the raw estimate of this frame: one dispatch per
@@ -168,7 +155,11 @@ impl TracePass {
         loop_stats: bool,
     ) -> Result<u32> {
         let variant = trace_variant(p, images, loop_stats)?;
-        let pipeline = self.pipeline(variant)?;
+        let dev = &self.dev;
+        let pipeline = self.pipelines.get_or_create(variant, |v| {
+            let push = size_of::<TraceParams>();
+            blueshift_shaders::pipeline(dev, &v.shader(), &TRACE_BINDINGS, push)
+        })?;
         let per_dispatch = samples_per_dispatch(vertices, p.max_bounces).min(p.spp);
         for first in (0..p.spp).step_by(per_dispatch as usize) {
             let p = TraceParams {

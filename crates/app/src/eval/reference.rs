@@ -180,7 +180,7 @@ pub fn references(job: &RefJob) -> Result<References> {
     }
     if job.spp < 1024 {
         eprintln!(
-            "warning: --reference-spp {} is below the 1024 of docs/results.md: reference noise inflates every metric",
+            "warning: --reference-spp {} is below 1024 (docs/results.md): reference noise inflates every metric",
             job.spp
         );
     }
