@@ -21,14 +21,6 @@ pub enum Error {
         /// The codec error.
         source: image::ImageError,
     },
-    /// A file has the wrong size, header or content.
-    #[error("{path}: {reason}")]
-    Format {
-        /// The file.
-        path: PathBuf,
-        /// What is wrong with it.
-        reason: String,
-    },
     /// An argument is out of range (image too small, bad tile size, ...).
     #[error("invalid argument: {0}")]
     Invalid(String),
