@@ -64,6 +64,17 @@ uint owen_sobol_bits(uint seed, uint index, uint dim) {
     return bitfieldReverse(owen_hash(sobol_reversed(shuffled, d), hash_combine(group_seed, d + 1u)));
 }
 
+// Seeds of one block (seed >> 6) share the scrambled (0,2)-sequence of each dimension pair;
+// seed & 63 at sample `index` takes point index * 64 + (seed & 63), shuffled per pair within
+// its aligned 64-point chunk, so a block's seeds hold a (0,6,2)-net at every index (CPU twin:
+// sobol.rs block_net_bits).
+uint block_net_bits(uint seed, uint index, uint dim) {
+    uint key = hash_combine(seed >> 6u, dim >> 1u);
+    uint point = nested_uniform_scramble((index << 6u) | (seed & 63u), key);
+    uint d = dim & 1u;
+    return bitfieldReverse(owen_hash(sobol_reversed(point, d), hash_combine(key, d + 1u)));
+}
+
 uint r2_bits(uint seed, uint index, uint dim) {
     uint offset = hash3(seed, dim, 0x5232u);
     return offset + index * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
@@ -94,6 +105,7 @@ uint hbo19_lookup_bits(uint seed, uint index, uint dim) {
 uint sample_bits(uint kind, uint seed, uint index, uint dim) {
     if (kind == SAMPLER_SOBOL || kind == SAMPLER_HBO19) return owen_sobol_bits(seed, index, dim);
     if (kind == SAMPLER_R2) return r2_bits(seed, index, dim);
+    if (kind == SAMPLER_BLOCKNET) return block_net_bits(seed, index, dim);
     return hash3(seed, index, dim);
 }
 

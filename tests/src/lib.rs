@@ -17,6 +17,8 @@ mod blue;
 #[cfg(test)]
 mod bvh;
 #[cfg(test)]
+mod cycle;
+#[cfg(test)]
 mod demod;
 #[cfg(test)]
 mod hbo19;

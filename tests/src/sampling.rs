@@ -37,7 +37,7 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
         })
         .collect();
     let inb = Buffer::from_slice(gpu.dev(), "sampling.inputs", &inputs).unwrap();
-    let out = gpu.output::<[u32; 4]>("sampling.results", n as usize);
+    let out = gpu.output::<[u32; 5]>("sampling.results", n as usize);
     gpu.run(
         &p,
         &[
@@ -48,11 +48,17 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
         bytemuck::bytes_of(&n),
         [groups_for(n, 64), 1, 1],
     );
-    let got = out.read::<[u32; 4]>().unwrap();
+    let got = out.read::<[u32; 5]>().unwrap();
     let s = Samples::with_keys(table);
     for (q, g) in inputs.iter().zip(&got) {
-        let want = [Sampler::White, Sampler::Sobol, Sampler::R2, Sampler::Hbo19]
-            .map(|m| s.bits(m, q[0], q[1], q[2]));
+        let want = [
+            Sampler::White,
+            Sampler::Sobol,
+            Sampler::R2,
+            Sampler::Hbo19,
+            Sampler::BlockNet,
+        ]
+        .map(|m| s.bits(m, q[0], q[1], q[2]));
         assert_eq!(*g, want, "seed {} index {} dim {}", q[0], q[1], q[2]);
     }
 }

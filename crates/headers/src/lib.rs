@@ -14,6 +14,7 @@ pub fn all() -> Vec<(&'static str, String)> {
             Header::new()
                 .push::<params::SortParams>()
                 .push::<params::RetargetParams>()
+                .push::<params::CycleParams>()
                 .push::<params::TraceParams>()
                 .push::<params::ImageParams>()
                 .constant("TRACE_FLAG_SALT_FRAME", params::TRACE_FLAG_SALT_FRAME)

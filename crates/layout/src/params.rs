@@ -34,6 +34,35 @@ gpu_struct! {
     }
 }
 
+gpu_struct! {
+    /// Push constants of `permute/cycle_keys` (one invocation per visible pixel).
+    pub struct CycleParams {
+        pub width: u32,
+        pub height: u32,
+        /// Row stride of the seed buffer.
+        pub stride: u32,
+        /// Phase of the frame just traced (frame mod CYCLE_FRAMES): its history slot.
+        pub phase: u32,
+        /// Phase of the next frame: the slot whose seeds and keys the sorting pass ranks.
+        pub next_phase: u32,
+        /// 1 once the next phase's slot has been written (a whole cycle has run); 0: the
+        /// sorting pass ranks this frame's seeds and keys instead.
+        pub next_valid: u32,
+        /// Spatio-temporal mask: tile edge, and the slice the next frame sorts against.
+        pub mask_size: u32,
+        pub mask_layer: u32,
+        /// Frames in the pixel's running mean (`accum`); above 0 the recorded key is the
+        /// estimate's key minus that mean, an estimate of the seed's error rather than of the
+        /// image, which carries over to the other pixels of the block.
+        pub mean_count: u32,
+    }
+}
+
+/// Frames in the point cycle of `sort-cycle`: each seed revisits the same CYCLE_FRAMES points
+/// of its Owen-scrambled Sobol sequence (indices 0..CYCLE_FRAMES, a (0,4,2)-net), so the
+/// estimate it gave CYCLE_FRAMES frames ago predicts the next one (docs/algorithm.md).
+pub const CYCLE_FRAMES: u32 = 16;
+
 /// The sorting pass counts the classes of at least SKEW_MIN_PIXELS pixels in a block, and
 /// those among them whose keys have a sample skewness |g| > SKEW_LIMIT: antithetic pairs
 /// cannot cancel a heavy tail (docs/algorithm.md, "pairs=adaptive").

@@ -207,7 +207,7 @@ mod tests {
     #[test]
     fn variants_are_the_specialised_ones_and_two_counting_shaders() {
         let all = TraceVariant::all();
-        assert_eq!(all.len(), 4 * 8 + 2);
+        assert_eq!(all.len(), Sampler::ALL.len() * 8 + 2);
         let counting: Vec<_> = all.iter().filter(|v| v.loop_stats).collect();
         assert_eq!(counting.len(), 2);
         assert!(counting.iter().all(|v| v.canonical() == **v));

@@ -10,6 +10,7 @@
 //! Frame t sorts against mask M_t(p) = M((p + o_t) mod N) with o_t = t*s mod N for the integer
 //! shift s the retarget table was optimised for (never a rounded R2 value: docs/algorithm.md).
 mod cpu;
+mod cycle;
 mod edges;
 mod gpu;
 mod history;
@@ -21,6 +22,7 @@ mod skew;
 pub use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 pub use blueshift_layout::params::{RetargetParams, SortParams};
 pub use cpu::{retarget_seeds_cpu, sort_key, sort_seeds_cpu};
+pub use cycle::{CYCLE_FRAMES, CycleBuffers, CycleOutput, CycleParams, CyclePass, cycle_keys_cpu};
 pub use edges::classify_pixels_cpu;
 pub use gpu::{PermutePasses, SortInput, SortVariant};
 pub use history::{HistoryKeys, history_key_cpu};

@@ -16,6 +16,7 @@
 //! ```
 mod camera_path;
 mod config;
+mod cycle;
 mod error;
 mod image;
 mod method;
@@ -34,10 +35,12 @@ pub use blueshift_trace::{
 pub use camera_path::{CameraPath, Keyframe};
 pub use config::RenderConfig;
 pub use error::{RenderError, Result};
-pub use method::{GRID_BLOCK, Grouping, Key, Method, Motion, Pairs, Permutation, Transport};
+pub use method::{
+    GRID_BLOCK, Grouping, Key, Method, Motion, Pairs, Permutation, Points, Transport,
+};
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
-pub use seeds::{SeedMap, initial_seeds, tile_seeds};
+pub use seeds::{SeedMap, block_seeds, initial_seeds, tile_seeds};
 pub use stats::{FrameStats, LoopCount, LoopStats};
 
 use blueshift_device::{Buffer, Device, MemoryLocation, Recorder};
@@ -48,7 +51,8 @@ use blueshift_layout::params::{
     TraceParams,
 };
 use blueshift_permute::{
-    PermutePasses, Screen, SortInput, SortParams, grid_offset, mask_offset, pair_phase,
+    CYCLE_FRAMES, PermutePasses, Screen, SortInput, SortParams, grid_offset, mask_offset,
+    pair_phase,
 };
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use blueshift_trace::TracePass;
@@ -57,12 +61,13 @@ use seeds::{key_words, seeds_of};
 
 /// Timing labels of every pass a permutation method adds to the path tracer, in frame order:
 /// their sum against `trace` is the method's overhead.
-pub const PERMUTE_PASSES: [&str; 7] = [
+pub const PERMUTE_PASSES: [&str; 8] = [
     "gbuffer",
     "reproject_motion",
     "reproject_seeds",
     "history_key",
     "classify_pixels",
+    "cycle_keys",
     "sort_seeds",
     "retarget_seeds",
 ];
@@ -104,6 +109,8 @@ pub struct Renderer {
     pairs_gate: PairsGate,
     /// G-buffers and reprojection state, created when a method first needs them.
     motion: Option<motion::MotionState>,
+    /// `sort-cycle`'s history and sorting inputs, created when a method first needs them.
+    cycle: Option<cycle::CycleState>,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -171,6 +178,7 @@ impl Renderer {
             sort_stats: Buffer::new(dev, "frame.sort_stats", 8, host)?,
             pairs_gate: PairsGate::default(),
             motion: None,
+            cycle: None,
             cfg,
         };
         Ok(r)
@@ -293,7 +301,12 @@ impl Renderer {
             width: c.width,
             height: c.height,
             stride: self.screen.stride(),
-            frame: self.frame as u32,
+            // The sampler's frame: with a point cycle, the phase (the index repeats).
+            frame: if m.cycles_points() {
+                (self.frame % u64::from(CYCLE_FRAMES)) as u32
+            } else {
+                self.frame as u32
+            },
             spp: c.spp,
             sample_index: 0,
             sample_count: 1,
@@ -327,6 +340,10 @@ impl Renderer {
         } else {
             &self.mask
         };
+        if m.cycles_points() && self.cycle.is_none() {
+            let state = cycle::CycleState::new(&self.dev, &self.screen, self.assets.stbn_n)?;
+            self.cycle = Some(state);
+        }
         self.rec.begin()?;
         self.rec.fill_buffer(&self.trace_status, 0)?;
         self.rec.begin_pass("trace")?;
@@ -356,6 +373,12 @@ impl Renderer {
                     count_skew: u32::from(m.adapts_pairs()),
                     ..self.screen.sort_params_on_grid(block, next, grid)?
                 }
+            } else if m.cycles_points() {
+                // Fixed blocks against the next spatio-temporal slice (cycle_keys copies it).
+                SortParams {
+                    mask_size: self.assets.stbn_n,
+                    ..self.screen.sort_params(block, (0, 0))?
+                }
             } else {
                 self.screen.sort_params(block, off)?
             };
@@ -364,11 +387,22 @@ impl Renderer {
             if sp.count_skew != 0 {
                 self.rec.fill_buffer(&self.sort_stats, 0)?;
             }
+            let (estimate, mask) = match self.cycle.as_ref().filter(|_| m.cycles_points()) {
+                Some(c) => {
+                    self.rec.begin_pass("cycle_keys")?;
+                    let (n, t) = (self.assets.stbn_n, self.assets.stbn_frames);
+                    let cp = self.screen.cycle_params(self.frame, n, t, self.accumulated);
+                    let (est, seeds) = (&self.estimate, &self.seeds[cur]);
+                    c.record(&mut self.rec, &cp, est, seeds, &self.stbn, &self.accum)?;
+                    (&c.keys, &c.mask)
+                }
+                None => (&self.estimate, &self.mask),
+            };
             self.rec.begin_pass("sort_seeds")?;
             let motion = self.motion.as_ref();
             let input = SortInput {
-                estimate: &self.estimate,
-                mask: &self.mask,
+                estimate,
+                mask,
                 classes: motion.filter(|_| m.edge_aware()).map(|st| &st.classes),
                 history: motion
                     .and_then(|st| st.history_mean())

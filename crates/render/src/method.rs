@@ -59,6 +59,22 @@ pub enum Pairs {
     All,
 }
 
+/// Which sample points a seed stands for over frames.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Points {
+    /// The same point every frame (the paper): the estimate a seed gave predicts its next one
+    /// exactly, but a neighbourhood keeps the same population of errors, which neither a blur
+    /// nor an accumulation removes.
+    Fixed,
+    /// Block-net points (`Sampler::BlockNet`: a block's seeds share one scrambled Sobol
+    /// sequence, so at every index they hold a 64-point net) with the index cycling through
+    /// `CYCLE_FRAMES` values (`permute/cycle_keys`); seeds stay in their [`GRID_BLOCK`]-sized
+    /// block and rank by the key they gave one cycle earlier, against spatio-temporal mask
+    /// slices. The block's mean error is small in every frame, its arrangement is blue, and
+    /// the arrangement changes every frame, so a temporal filter averages it out.
+    Cycle,
+}
+
 /// A seed-permutation method: each field gates its own passes and shader code.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Permutation {
@@ -67,6 +83,7 @@ pub struct Permutation {
     pub transport: Transport,
     pub motion: Motion,
     pub pairs: Pairs,
+    pub points: Points,
 }
 
 /// A way of choosing per-pixel randomness over frames.
@@ -98,6 +115,7 @@ const PAPER: Permutation = Permutation {
     transport: Transport::Retarget,
     motion: Motion::None,
     pairs: Pairs::Off,
+    points: Points::Fixed,
 };
 
 const SORT: Permutation = Permutation {
@@ -111,6 +129,13 @@ const HISTORY: Permutation = Permutation {
     transport: Transport::Grid,
     motion: Motion::Reproject,
     pairs: Pairs::Thin,
+    points: Points::Fixed,
+};
+
+const CYCLE: Permutation = Permutation {
+    transport: Transport::None,
+    points: Points::Cycle,
+    ..PAPER
 };
 
 impl Method {
@@ -125,9 +150,12 @@ impl Method {
         pairs: Pairs::Adaptive,
         ..HISTORY
     });
+    /// Sorting in fixed blocks over a cycle of points per seed, against spatio-temporal mask
+    /// slices ([`Points::Cycle`]).
+    pub const SORT_CYCLE: Method = Method::Permute(CYCLE);
 
     /// The named presets `--method` offers, in the order of the documentation.
-    pub const PRESETS: [(&'static str, Method); 9] = [
+    pub const PRESETS: [(&'static str, Method); 10] = [
         ("white", Method::White),
         ("sobol", Method::Sobol),
         ("hbo19", Method::Hbo19),
@@ -137,6 +165,7 @@ impl Method {
         ("sort-retarget", Method::SORT_RETARGET),
         ("sort-grid-history", Method::SORT_GRID_HISTORY),
         ("sort-grid-adaptive", Method::SORT_GRID_ADAPTIVE),
+        ("sort-cycle", Method::SORT_CYCLE),
     ];
 
     /// The preset's name, or the spelled-out form `sort:field=value,...` of the fields that
@@ -175,6 +204,7 @@ impl Method {
         match self {
             Method::Sobol => Sampler::Sobol,
             Method::Hbo19 => Sampler::Hbo19,
+            m if m.cycles_points() => Sampler::BlockNet,
             _ => Sampler::White,
         }
     }
@@ -196,7 +226,7 @@ impl Method {
 
     /// The sorting block edge: `requested` (the paper's B) or GRID_BLOCK for the moving grid.
     pub fn block(self, requested: u32) -> u32 {
-        if self.shifts_grid() {
+        if self.shifts_grid() || self.cycles_points() {
             GRID_BLOCK
         } else {
             requested
@@ -205,7 +235,13 @@ impl Method {
 
     /// Whether the sample index advances with the frame (a progressive sequence per pixel).
     pub fn advances_index(self) -> bool {
-        matches!(self, Method::Sobol | Method::Hbo19)
+        matches!(self, Method::Sobol | Method::Hbo19) || self.cycles_points()
+    }
+
+    /// Whether seeds cycle through a fixed set of points (`permute/cycle_keys`): the sample
+    /// index is the frame's phase in the cycle.
+    pub fn cycles_points(self) -> bool {
+        self.has(|p| p.points == Points::Cycle)
     }
 
     /// Whether the retargeting pass runs.

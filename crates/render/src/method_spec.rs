@@ -1,24 +1,26 @@
 //! The spelled-out form of a permutation method, for experiments: `PRESET:field=value,...`,
 //! e.g. `sort:transport=grid,key=history,motion=reproject`. Each field overrides the preset's.
-use crate::method::{Grouping, Key, Method, Motion, Pairs, Permutation, Transport};
+use crate::method::{Grouping, Key, Method, Motion, Pairs, Permutation, Points, Transport};
 
 /// (field, values in order of their enum) of every field, for parsing and help.
-const FIELDS: [(&str, &[&str]); 5] = [
+const FIELDS: [(&str, &[&str]); 6] = [
     ("key", &["raw", "demod", "history"]),
     ("grouping", &["blocks", "surfaces"]),
     ("transport", &["none", "retarget", "grid"]),
     ("motion", &["none", "reproject"]),
     ("pairs", &["off", "thin", "adaptive", "all"]),
+    ("points", &["fixed", "cycle"]),
 ];
 
 /// (field, value) of each field of `p`, in the order of [`FIELDS`].
-pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 5] {
+pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 6] {
     let idx = [
         p.key as usize,
         p.grouping as usize,
         p.transport as usize,
         p.motion as usize,
         p.pairs as usize,
+        p.points as usize,
     ];
     std::array::from_fn(|i| (FIELDS[i].0, FIELDS[i].1[idx[i]]))
 }
@@ -42,7 +44,8 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
         "grouping" => p.grouping = [Grouping::Blocks, Grouping::Surfaces][i],
         "transport" => p.transport = [Transport::None, Transport::Retarget, Transport::Grid][i],
         "motion" => p.motion = [Motion::None, Motion::Reproject][i],
-        _ => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive, Pairs::All][i],
+        "pairs" => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive, Pairs::All][i],
+        _ => p.points = [Points::Fixed, Points::Cycle][i],
     }
     Ok(())
 }
@@ -57,6 +60,13 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
             "pairs={} needs transport=grid (pairs replace the next frame's mask there)",
             fields(p)[4].1
         ));
+    }
+    if p.points == Points::Cycle && (p.transport != Transport::None || p.motion != Motion::None) {
+        return Err(
+            "points=cycle needs transport=none and motion=none (a seed's history slots stay \
+             valid only while it stays in its block)"
+                .into(),
+        );
     }
     Ok(())
 }
@@ -85,7 +95,7 @@ pub(crate) fn parse(s: &str) -> Result<Method, String> {
     }
     let Some(mut p) = preset.permutation() else {
         return Err(format!(
-            "'{base}' is not a permutation method; only sort, sort-retarget and the sort-grid presets take fields"
+            "'{base}' is not a permutation method; only the sort presets take fields"
         ));
     };
     for item in spec.split(',') {
@@ -123,6 +133,10 @@ mod tests {
         assert_eq!(m.name(), "sort:key=demod,transport=grid");
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
+        let c: Method = "sort:points=cycle".parse().expect("valid");
+        assert_eq!(c, Method::SORT_CYCLE);
+        assert!(c.cycles_points() && c.advances_index() && c.block(4) == crate::GRID_BLOCK);
+        assert_eq!(c.default_sampler(), blueshift_sampling::Sampler::BlockNet);
     }
 
     #[test]
@@ -135,5 +149,7 @@ mod tests {
         assert!(err("sort:key=history").contains("needs motion=reproject"));
         assert!(err("sort-retarget:pairs=thin").contains("needs transport=grid"));
         assert!(err("white:key=raw").contains("not a permutation method"));
+        assert!(err("sort-retarget:points=cycle").contains("needs transport=none"));
+        assert!(err("sort-cycle:points=loop").contains("points: fixed, cycle"));
     }
 }

@@ -33,6 +33,26 @@ pub fn initial_seeds(count: usize, sequence: u32) -> Vec<u32> {
     (0..count as u32).map(|i| pcg_hash(i ^ salt)).collect()
 }
 
+/// The block-net seed map (`Sampler::BlockNet`) of a padded screen `stride` wide: per
+/// [`GRID_BLOCK`]-sized block a hashed block number in the high bits, and in the low six bits
+/// the pixel's place in the block XOR a per-block value. Every block holds each of its 64
+/// offsets once, so its seeds index one 64-point net.
+pub fn block_seeds(count: usize, stride: u32, sequence: u32) -> Vec<u32> {
+    use blueshift_sampling::rng::pcg_hash;
+    use blueshift_sampling::sobol::BLOCK_NET_LOCAL_BITS;
+    const B: u32 = crate::GRID_BLOCK;
+    const _: () = assert!(B * B == 1 << BLOCK_NET_LOCAL_BITS);
+    let salt = pcg_hash(sequence ^ 0x0b10_c4e7);
+    (0..count as u32)
+        .map(|i| {
+            let (x, y) = (i % stride, i / stride);
+            let h = pcg_hash((y / B * stride.div_ceil(B) + x / B) ^ salt);
+            let local = ((y % B) * B + x % B) ^ (h >> (32 - BLOCK_NET_LOCAL_BITS));
+            (h << BLOCK_NET_LOCAL_BITS) | local
+        })
+        .collect()
+}
+
 /// The HBO+19 seed map of a padded screen `stride` wide: each pixel's position in the key
 /// tile, the tile shifted by a per-sequence offset (sequence 0: no shift).
 pub fn tile_seeds(count: usize, stride: u32, tile: u32, sequence: u32) -> Vec<u32> {
@@ -56,6 +76,13 @@ pub(crate) fn seeds_of(
     screen: &Screen,
     assets: &MethodAssets,
 ) -> Result<Vec<u32>> {
+    if cfg.effective_sampler() == Sampler::BlockNet {
+        return Ok(block_seeds(
+            screen.seed_count(),
+            screen.stride(),
+            cfg.sequence,
+        ));
+    }
     if !cfg.tile_seeds() {
         return Ok(initial_seeds(screen.seed_count(), cfg.sequence));
     }

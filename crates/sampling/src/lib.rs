@@ -20,10 +20,19 @@ pub enum Sampler {
     /// Owen-Sobol with per-pixel keys from an optimised tile (HBO+19, see [`hbo19`]); the seed
     /// is the tile position whose keys the pixel uses. Without a key table: plain Owen-Sobol.
     Hbo19 = 3,
+    /// Owen-Sobol shared by the seeds of a block, each seed a fixed offset into every aligned
+    /// chunk of 64 points (`sobol::block_net_bits`; `sort-cycle`'s seeds).
+    BlockNet = 4,
 }
 
 impl Sampler {
-    pub const ALL: [Sampler; 4] = [Sampler::White, Sampler::Sobol, Sampler::R2, Sampler::Hbo19];
+    pub const ALL: [Sampler; 5] = [
+        Sampler::White,
+        Sampler::Sobol,
+        Sampler::R2,
+        Sampler::Hbo19,
+        Sampler::BlockNet,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -31,6 +40,7 @@ impl Sampler {
             Sampler::Sobol => "sobol",
             Sampler::R2 => "r2",
             Sampler::Hbo19 => "hbo19",
+            Sampler::BlockNet => "blocknet",
         }
     }
 
@@ -74,6 +84,7 @@ impl Samples {
                 Some(k) => k.bits(seed, index, dim, &self.dirs),
                 None => sobol::owen_sobol_bits(seed, index, dim, &self.dirs),
             },
+            Sampler::BlockNet => sobol::block_net_bits(seed, index, dim, &self.dirs),
         }
     }
 

@@ -95,6 +95,26 @@ pub fn owen_sobol_bits(seed: u32, index: u32, dim: u32, dirs: &[[u32; 32]; 4]) -
     nested_uniform_scramble(sobol(shuffled, d, dirs), hash_combine(group_seed, d + 1))
 }
 
+/// Seed bits that number a seed within its block for [`block_net_bits`]: 64 seeds per block.
+pub const BLOCK_NET_LOCAL_BITS: u32 = 6;
+
+/// Block-net sample as a 32-bit fraction: the seeds of one block (equal `seed >> 6`) share one
+/// Owen-scrambled Sobol (0,2)-sequence per pair of dimensions, and seed `seed & 63` at sample
+/// `index` takes point `index * 64 + (seed & 63)` of it, shuffled per pair by a nested
+/// uniform scramble of the point number (which maps each aligned 64-point chunk onto a whole
+/// chunk, and decorrelates the pairs). So whatever pixel each seed sits on, the block's seeds
+/// at any one index together hold a (0,6,2)-net in every pair (the light sample's included),
+/// which keeps the block's mean error small in every frame; the permutation passes only
+/// arrange it (`sort-cycle`). Pairs rather than groups of four: Sobol dimensions 2-3 form no
+/// (0,2)-net.
+pub fn block_net_bits(seed: u32, index: u32, dim: u32, dirs: &[[u32; 32]; 4]) -> u32 {
+    let key = hash_combine(seed >> BLOCK_NET_LOCAL_BITS, dim / 2);
+    let local = seed & ((1 << BLOCK_NET_LOCAL_BITS) - 1);
+    let point = nested_uniform_scramble((index << BLOCK_NET_LOCAL_BITS) | local, key);
+    let d = dim % 2;
+    nested_uniform_scramble(sobol(point, d, dirs), hash_combine(key, d + 1))
+}
+
 /// Owen-scrambled Sobol sample in [0, 1).
 pub fn owen_sobol(seed: u32, index: u32, dim: u32, dirs: &[[u32; 32]; 4]) -> f32 {
     crate::rng::to_unit(owen_sobol_bits(seed, index, dim, dirs))
@@ -117,6 +137,39 @@ pub(crate) fn is_0m2_net(points: &[(u32, u32)], m: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// At any index, the 64 seeds of a block hold a (0,6,2)-net in every pair of dimensions,
+    /// and one seed's points over 16 consecutive indices are distinct.
+    #[test]
+    fn block_net_seeds_of_a_block_form_a_net_at_every_index() {
+        let dirs = direction_numbers();
+        for block in [0u32, 7, 0x3ff_ffff] {
+            for index in [0u32, 1, 5, 15, 1000] {
+                for pair in 0..5 {
+                    let pts: Vec<_> = (0..64)
+                        .map(|l| {
+                            let seed = block << 6 | l;
+                            let dim = pair * 2;
+                            (
+                                block_net_bits(seed, index, dim, &dirs),
+                                block_net_bits(seed, index, dim + 1, &dirs),
+                            )
+                        })
+                        .collect();
+                    assert!(
+                        is_0m2_net(&pts, 6),
+                        "block {block} index {index} pair {pair}"
+                    );
+                }
+            }
+        }
+        let mut xs: Vec<u32> = (0..16)
+            .map(|i| block_net_bits(3 << 6 | 9, i, 0, &dirs))
+            .collect();
+        xs.sort_unstable();
+        xs.dedup();
+        assert_eq!(xs.len(), 16);
+    }
 
     #[test]
     fn sobol_dims_0_1_are_0m2_nets_unscrambled() {

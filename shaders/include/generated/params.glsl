@@ -28,6 +28,19 @@ struct RetargetParams {
 };
 const uint RETARGET_PARAMS_SIZE = 20;
 
+struct CycleParams {
+    uint width; // offset 0, size 4
+    uint height; // offset 4, size 4
+    uint stride; // offset 8, size 4
+    uint phase; // offset 12, size 4
+    uint next_phase; // offset 16, size 4
+    uint next_valid; // offset 20, size 4
+    uint mask_size; // offset 24, size 4
+    uint mask_layer; // offset 28, size 4
+    uint mean_count; // offset 32, size 4
+};
+const uint CYCLE_PARAMS_SIZE = 36;
+
 struct TraceParams {
     vec3 cam_origin; // offset 0, size 12
     vec3 cam_forward; // offset 12, size 12

@@ -13,5 +13,6 @@ const uint SAMPLER_WHITE = 0u;
 const uint SAMPLER_SOBOL = 1u;
 const uint SAMPLER_R2 = 2u;
 const uint SAMPLER_HBO19 = 3u;
+const uint SAMPLER_BLOCKNET = 4u;
 
 #endif

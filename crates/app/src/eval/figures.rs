@@ -1,5 +1,6 @@
 //! Report figures: signed error crops beside their spectra, radial curves of all methods,
-//! P1 ratio over frames, a strip of rendered frames; and the FLIP score.
+//! P1 ratio over frames, a strip of rendered frames; and the display tonemap they and FLIP
+//! share.
 use super::Run;
 use anyhow::{Context, Result};
 use blueshift_analysis::{RadialSeries, plot_radial_profiles, spectrum_to_image};
@@ -17,18 +18,12 @@ fn srgb8(v: f32) -> u8 {
     (s * 255.0 + 0.5) as u8
 }
 
-fn tonemap(px: &[[f32; 4]]) -> Vec<u8> {
+/// Linear RGB to sRGB8 as shown on screen: exposure 1, every channel clamped at 1 (as
+/// shaders/image/tonemap.comp at its default exposure; `masks::DISPLAY_WHITE` depends on it).
+pub fn tonemap(px: &[[f32; 4]]) -> Vec<u8> {
     px.iter()
         .flat_map(|p| [srgb8(p[0]), srgb8(p[1]), srgb8(p[2])])
         .collect()
-}
-
-/// Mean LDR FLIP of `test` against `reference` (both linear RGB, sRGB-encoded, clamped).
-pub fn flip_mean(test: &[[f32; 4]], reference: &[[f32; 4]], w: u32, h: u32) -> f64 {
-    let r = nv_flip::FlipImageRgb8::with_data(w, h, &tonemap(reference));
-    let t = nv_flip::FlipImageRgb8::with_data(w, h, &tonemap(test));
-    let err = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
-    nv_flip::FlipPool::from_image(&err).mean() as f64
 }
 
 /// Blue (negative) - white (0) - red (positive), saturating at +-`scale`.
@@ -114,7 +109,8 @@ pub fn radial(runs: &[&Run], title: &str, path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// P1(method) / P1(white) per frame, one line per method.
+/// P1(method) / P1(white) on emitter-free pixels per frame, one line per method (the headline
+/// pixel set: with jitter, all-pixel P1 follows the aliasing at the lights' edges).
 pub fn p1_over_frames(runs: &[&Run], title: &str, path: &Path) -> Result<()> {
     let Some(white) = runs
         .iter()
@@ -128,9 +124,9 @@ pub fn p1_over_frames(runs: &[&Run], title: &str, path: &Path) -> Result<()> {
         .map(|r| {
             let v = r
                 .metrics
-                .p1_per_frame
+                .p1_clean_per_frame
                 .iter()
-                .zip(&white.metrics.p1_per_frame)
+                .zip(&white.metrics.p1_clean_per_frame)
                 .map(|(a, b)| a / b.max(1e-12))
                 .collect();
             (r.method.name().to_string(), v)
@@ -175,7 +171,7 @@ fn draw_lines(
         chart
             .configure_mesh()
             .x_desc("frame")
-            .y_desc("P1 / P1(white)")
+            .y_desc("P1 / P1(white), emitter-free pixels")
             .draw()
             .map_err(|e| e.to_string())?;
     }

@@ -1,5 +1,7 @@
 //! Per-run metric accumulation (docs/results.md): RMSE, LF, P1, P2 over a frame window, on all,
-//! smooth and edge pixels, for raw frames and their exponential moving average (alpha 0.1).
+//! smooth, edge and emitter-free pixels, for raw frames and their exponential moving average
+//! (alpha 0.1).
+use super::masks::Masks;
 use anyhow::Result;
 use blueshift_analysis::{
     Boundary, Gray, LF_CUTOFF, RadialProfile, Spectrum, SpectrumAccumulator, Window, gaussian_blur,
@@ -11,72 +13,44 @@ use serde::Serialize;
 pub const TILE: usize = 64;
 /// EMA weight of the newest frame.
 pub const EMA_ALPHA: f32 = 0.1;
-/// Relative reference gradient above which a pixel is an edge pixel (before a 1-px dilation).
-pub const EDGE_THRESHOLD: f32 = 0.1;
-
-/// Which pixels a metric covers.
-#[derive(Debug, Clone)]
-pub struct Masks {
-    pub edge: Vec<bool>,
-}
-
-impl Masks {
-    /// Edge pixels: max forward difference of the reference luminance, relative to the image
-    /// mean luminance, above [`EDGE_THRESHOLD`], dilated by one pixel. Smooth = the rest.
-    pub fn from_reference(r: &Gray) -> Self {
-        let (w, h) = (r.w, r.h);
-        let scale = (r.mean() as f32).max(1e-6);
-        let mut raw = vec![false; w * h];
-        for y in 0..h {
-            for x in 0..w {
-                let v = r.at(x, y);
-                let dx = if x + 1 < w {
-                    (r.at(x + 1, y) - v).abs()
-                } else {
-                    0.0
-                };
-                let dy = if y + 1 < h {
-                    (r.at(x, y + 1) - v).abs()
-                } else {
-                    0.0
-                };
-                raw[y * w + x] = dx.max(dy) / scale > EDGE_THRESHOLD;
-            }
-        }
-        let mut edge = raw.clone();
-        for y in 0..h {
-            for x in 0..w {
-                if raw[y * w + x] {
-                    for (nx, ny) in [
-                        (x.wrapping_sub(1), y),
-                        (x + 1, y),
-                        (x, y.wrapping_sub(1)),
-                        (x, y + 1),
-                    ] {
-                        if nx < w && ny < h {
-                            edge[ny * w + nx] = true;
-                        }
-                    }
-                }
-            }
-        }
-        Self { edge }
-    }
-}
-
-/// Mean squares on all / smooth / edge pixels.
+/// Mean squares (or their roots) on all / smooth / edge / emitter-free pixels.
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct Split {
     pub all: f64,
     pub smooth: f64,
     pub edge: f64,
+    /// Emitter-free pixels ([`Masks::clean`]).
+    pub clean: f64,
 }
 
+impl Split {
+    /// `f` applied to each pixel set.
+    pub fn map(self, f: impl Fn(f64) -> f64) -> Split {
+        Split {
+            all: f(self.all),
+            smooth: f(self.smooth),
+            edge: f(self.edge),
+            clean: f(self.clean),
+        }
+    }
+    /// `f` applied to each pixel set of `self` and `o`.
+    pub fn zip(self, o: Split, f: impl Fn(f64, f64) -> f64) -> Split {
+        Split {
+            all: f(self.all, o.all),
+            smooth: f(self.smooth, o.smooth),
+            edge: f(self.edge, o.edge),
+            clean: f(self.clean, o.clean),
+        }
+    }
+}
+
+/// Mean squares of `img` on each pixel set; 0 for an empty set (e.g. a frame filled by a
+/// light has no emitter-free pixel).
 fn mean_squares(img: &Gray, masks: &Masks) -> Split {
-    let (mut s, mut n) = ([0.0f64; 3], [0usize; 3]);
-    for (v, &e) in img.data.iter().zip(&masks.edge) {
+    let (mut s, mut n) = ([0.0f64; 4], [0usize; 4]);
+    for ((v, &e), &c) in img.data.iter().zip(&masks.edge).zip(&masks.clean) {
         let v2 = (*v as f64) * (*v as f64);
-        for (k, on) in [true, !e, e].into_iter().enumerate() {
+        for (k, on) in [true, !e, e, c].into_iter().enumerate() {
             if on {
                 s[k] += v2;
                 n[k] += 1;
@@ -88,6 +62,7 @@ fn mean_squares(img: &Gray, masks: &Masks) -> Split {
         all: m(0),
         smooth: m(1),
         edge: m(2),
+        clean: m(3),
     }
 }
 
@@ -114,14 +89,13 @@ impl Stream {
             spectrum: SpectrumAccumulator::new(TILE, Window::Hann)?,
         })
     }
+    /// Adds one error image. The blur sees the whole image (emitters included); the masks
+    /// only select which blurred pixels count.
     fn add(&mut self, e: &Gray, masks: &Masks) -> Result<()> {
         let b1 = gaussian_blur(e, 1.0, Boundary::Clamp)?;
         let b2 = gaussian_blur(e, 2.0, Boundary::Clamp)?;
         for (acc, img) in self.sq.iter_mut().zip([e, &b1, &b2]) {
-            let m = mean_squares(img, masks);
-            acc.all += m.all;
-            acc.smooth += m.smooth;
-            acc.edge += m.edge;
+            *acc = acc.zip(mean_squares(img, masks), |a, b| a + b);
         }
         self.frames += 1;
         if e.w >= TILE && e.h >= TILE {
@@ -131,11 +105,7 @@ impl Stream {
     }
     fn finish(&self) -> Result<(StreamMetrics, Option<Spectrum>)> {
         let n = self.frames.max(1) as f64;
-        let root = |s: Split| Split {
-            all: (s.all / n).sqrt(),
-            smooth: (s.smooth / n).sqrt(),
-            edge: (s.edge / n).sqrt(),
-        };
+        let root = |s: Split| s.map(|v| (v / n).sqrt());
         let spectrum = if self.spectrum.count() > 0 {
             Some(self.spectrum.mean()?)
         } else {
@@ -162,8 +132,10 @@ pub struct RunAccumulator {
     raw: Stream,
     ema_stream: Stream,
     ema: Option<Gray>,
-    /// P1 (all pixels) of every frame, for the P1-over-frames figure.
+    /// P1 (all pixels) of every frame.
     pub p1_per_frame: Vec<f64>,
+    /// P1 on emitter-free pixels of every frame, for the P1-over-frames figure.
+    pub p1_clean_per_frame: Vec<f64>,
     pub last_error: Option<Gray>,
 }
 
@@ -173,6 +145,7 @@ pub struct RunMetrics {
     pub raw: StreamMetrics,
     pub ema: StreamMetrics,
     pub p1_per_frame: Vec<f64>,
+    pub p1_clean_per_frame: Vec<f64>,
     #[serde(skip)]
     pub spectrum: Option<Spectrum>,
     #[serde(skip)]
@@ -187,6 +160,7 @@ impl RunAccumulator {
             ema_stream: Stream::new()?,
             ema: None,
             p1_per_frame: Vec::new(),
+            p1_clean_per_frame: Vec::new(),
             last_error: None,
         })
     }
@@ -194,7 +168,9 @@ impl RunAccumulator {
     /// Adds the error image of frame `t`.
     pub fn add_frame(&mut self, t: usize, e: Gray, masks: &Masks) -> Result<()> {
         let b1 = gaussian_blur(&e, 1.0, Boundary::Clamp)?;
-        self.p1_per_frame.push(mean_squares(&b1, masks).all.sqrt());
+        let p1 = mean_squares(&b1, masks).map(f64::sqrt);
+        self.p1_per_frame.push(p1.all);
+        self.p1_clean_per_frame.push(p1.clean);
         let ema = match self.ema.take() {
             None => e.clone(),
             Some(mut m) => {
@@ -221,6 +197,7 @@ impl RunAccumulator {
             raw,
             ema,
             p1_per_frame: self.p1_per_frame,
+            p1_clean_per_frame: self.p1_clean_per_frame,
             spectrum,
             radial,
         })
@@ -230,11 +207,9 @@ impl RunAccumulator {
 /// Running average of runs over sequences: `prev` already averages `n` sequences.
 pub fn average(prev: RunMetrics, next: RunMetrics, n: f64) -> RunMetrics {
     let mix = |a: f64, b: f64| (a * n + b) / (n + 1.0);
-    let split = |a: Split, b: Split| Split {
-        all: mix(a.all, b.all),
-        smooth: mix(a.smooth, b.smooth),
-        edge: mix(a.edge, b.edge),
-    };
+    let split = |a: Split, b: Split| a.zip(b, mix);
+    let frames =
+        |a: &[f64], b: &[f64]| -> Vec<f64> { a.iter().zip(b).map(|(&x, &y)| mix(x, y)).collect() };
     let stream = |a: StreamMetrics, b: StreamMetrics| StreamMetrics {
         rmse: split(a.rmse, b.rmse),
         p1: split(a.p1, b.p1),
@@ -244,12 +219,8 @@ pub fn average(prev: RunMetrics, next: RunMetrics, n: f64) -> RunMetrics {
     RunMetrics {
         raw: stream(prev.raw, next.raw),
         ema: stream(prev.ema, next.ema),
-        p1_per_frame: prev
-            .p1_per_frame
-            .iter()
-            .zip(&next.p1_per_frame)
-            .map(|(&a, &b)| mix(a, b))
-            .collect(),
+        p1_per_frame: frames(&prev.p1_per_frame, &next.p1_per_frame),
+        p1_clean_per_frame: frames(&prev.p1_clean_per_frame, &next.p1_clean_per_frame),
         spectrum: prev.spectrum,
         radial: prev.radial,
     }
@@ -260,21 +231,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn masks_mark_a_step_edge_and_its_neighbours() {
-        let r = Gray::from_fn(8, 8, |x, _| if x < 4 { 1.0 } else { 2.0 });
-        let m = Masks::from_reference(&r);
-        for y in 0..8 {
-            for x in 0..8 {
-                assert_eq!(m.edge[y * 8 + x], (2..=4).contains(&x), "({x},{y})");
-            }
-        }
-    }
-
-    #[test]
     fn constant_error_has_equal_split_rmse() {
         let e = Gray::from_fn(64, 64, |_, _| 0.5);
         let masks = Masks {
             edge: (0..64 * 64).map(|i| i % 2 == 0).collect(),
+            clean: (0..64 * 64).map(|i| i % 3 == 0).collect(),
         };
         let mut acc = RunAccumulator::new(0).unwrap();
         acc.add_frame(0, e, &masks).unwrap();
@@ -283,9 +244,40 @@ mod tests {
             m.raw.rmse.all,
             m.raw.rmse.smooth,
             m.raw.rmse.edge,
+            m.raw.rmse.clean,
             m.raw.p1.all,
+            m.raw.p1.clean,
         ] {
             assert!((v - 0.5).abs() < 1e-6, "{v}");
         }
+    }
+
+    #[test]
+    fn error_on_emitters_leaves_emitter_free_metrics_at_the_background() {
+        // A 6x6 light on a dim background; the error is 0.1 everywhere but 100 on the light,
+        // over three frames (the EMA grows on the light and stays 0.1 elsewhere).
+        let (w, h) = (40, 32);
+        let light = |x: usize, y: usize| (15..21).contains(&x) && (12..18).contains(&y);
+        let reference = Gray::from_fn(w, h, |x, y| if light(x, y) { 12.0 } else { 0.4 });
+        let masks = Masks::from_reference(&reference);
+        let mut acc = RunAccumulator::new(0).unwrap();
+        for t in 0..3 {
+            let e = Gray::from_fn(w, h, |x, y| if light(x, y) { 100.0 } else { 0.1 });
+            acc.add_frame(t, e, &masks).unwrap();
+        }
+        let m = acc.finish().unwrap();
+        for (name, v) in [
+            ("raw rmse", m.raw.rmse.clean),
+            ("raw p1", m.raw.p1.clean),
+            ("ema rmse", m.ema.rmse.clean),
+            ("ema p1", m.ema.p1.clean),
+        ] {
+            assert!((v - 0.1).abs() < 1e-6, "{name} on emitter-free pixels: {v}");
+        }
+        for v in &m.p1_clean_per_frame {
+            assert!((v - 0.1).abs() < 1e-6, "{v}");
+        }
+        // The error is there for the other pixel sets.
+        assert!(m.raw.p1.all > 10.0 && m.ema.p1.all > 10.0, "{:?}", m.raw.p1);
     }
 }

@@ -1,7 +1,10 @@
 //! `blueshift eval`: renders a camera path with several methods, renders references, and
 //! writes a report (report.md, report.json, PNG figures) with the metrics of docs/results.md.
 mod figures;
+mod flip;
+mod masks;
 mod metrics;
+mod ratios;
 mod reference;
 mod report;
 
@@ -12,7 +15,8 @@ use anyhow::{Context, Result, bail};
 use blueshift_analysis::{Gray, luminance};
 use blueshift_render::{CameraPath, Method, RenderConfig, Renderer, SeedMap};
 use indicatif::{ProgressBar, ProgressStyle};
-use metrics::{Masks, RunAccumulator, RunMetrics};
+use masks::Masks;
+use metrics::{RunAccumulator, RunMetrics};
 use reference::{RefJob, references};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -60,11 +64,12 @@ pub struct EvalArgs {
     /// report's numbers independently).
     #[arg(long)]
     pub save_frames: bool,
-    /// Jitter primary rays inside the pixel (anti-aliasing). Off by default: the aliasing error
-    /// at the edges of visible emitters is orders of magnitude above the light-transport error
-    /// and no seed permutation can move it, so it would dominate every metric.
+    /// Primary rays through pixel centres (the paper's setting) instead of jittered inside the
+    /// pixel. Jitter is on by default because real-time renderers (and `render`/`view`) use
+    /// it; the aliasing it brings to the edges of visible lights, which no seed permutation
+    /// can move, is what the emitter-free metrics leave out.
     #[arg(long)]
-    pub jitter: bool,
+    pub no_jitter: bool,
     /// Frame-0 seed map of sort and sort-retarget: random, or hbo19 (HBO+19 tile positions
     /// with the hbo19 sampler, so frame 0 is already blue; the `hbo19` method always uses them).
     #[arg(long, default_value = "random")]
@@ -126,10 +131,16 @@ pub struct Run {
     pub config: Config,
     pub method: Method,
     pub metrics: RunMetrics,
-    /// P1 (all / smooth / edge pixels) of each sequence, for the spread of the ratios across
-    /// sequences.
+    /// P1 (all / smooth / edge / emitter-free pixels) of each sequence, for the spread of the
+    /// ratios across sequences.
     pub p1_per_sequence: Vec<metrics::Split>,
+    /// FLIP of the accumulated image at the last frame, over all pixels (averaged over
+    /// sequences).
     pub flip: f64,
+    /// The same FLIP map averaged over the emitter-free pixels only.
+    pub flip_clean: f64,
+    /// Share of emitter-free pixels in the last frame's reference.
+    pub clean_fraction: f64,
     pub pass_ms: BTreeMap<String, f64>,
     pub seconds: f64,
     pub last_frame: Vec<[f32; 4]>,
@@ -199,7 +210,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                 frames: args.frames,
                 path: camera,
                 cache: &cache,
-                no_jitter: !args.jitter,
+                no_jitter: args.no_jitter,
             };
             let refs = references(&job)?;
             for &spp in &spps {
@@ -255,7 +266,8 @@ fn run_method(
     let mut merged: Option<RunMetrics> = None;
     let mut p1_per_sequence = Vec::new();
     let mut times: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    let (mut last_frame, mut last_error, mut flip) = (Vec::new(), None, 0.0);
+    let (mut last_frame, mut last_error) = (Vec::new(), None);
+    let (mut flip, mut flip_clean, mut clean_fraction) = (0.0, 0.0, 0.0);
     for seq in 0..args.sequences {
         let (view, base_offset) = config.camera.view_window(args.frames, w, h);
         let cfg = RenderConfig {
@@ -264,7 +276,7 @@ fn run_method(
             block: args.block,
             method,
             sequence: seq,
-            no_jitter: !args.jitter,
+            no_jitter: args.no_jitter,
             view_size: Some(view),
             seed_map,
             ..RenderConfig::new(w, h)
@@ -298,7 +310,12 @@ fn run_method(
             acc.add_frame(t as usize, Gray::new(w as usize, h as usize, e)?, &masks)?;
             if t + 1 == args.frames {
                 last_frame = est;
-                flip += figures::flip_mean(&r.read_accum()?, &rf.px, w, h) / args.sequences as f64;
+                let n = args.sequences as f64;
+                let f = flip::scores(&r.read_accum()?, &rf.px, w, h, &masks.clean);
+                flip += f.all / n;
+                flip_clean += f.clean / n;
+                clean_fraction = masks.clean.iter().filter(|&&c| c).count() as f64
+                    / masks.clean.len().max(1) as f64;
             }
             bar.inc(1);
         }
@@ -323,6 +340,8 @@ fn run_method(
         metrics: merged.context("no sequence ran")?,
         p1_per_sequence,
         flip,
+        flip_clean,
+        clean_fraction,
         pass_ms,
         seconds: t0.elapsed().as_secs_f64(),
         last_frame,

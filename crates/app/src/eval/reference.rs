@@ -1,5 +1,6 @@
 //! Reference images: Owen-scrambled Sobol at >= 1024 spp, cached on disk under a key of scene,
-//! camera path, resolution, bounces, spp and the path tracer's SPIR-V (the renderer version).
+//! camera path, resolution, bounces, spp, primary-ray placement (jittered or pixel centres) and
+//! the path tracer's SPIR-V (the renderer version).
 use crate::output::write_atomic;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::luminance;
@@ -85,8 +86,11 @@ fn key(job: &RefJob, what: &str) -> String {
             .map(|w| bytemuck::cast_slice::<u32, u8>(&w).to_vec())
             .unwrap_or_default(),
     );
+    // A jittered reference is the pixel's area average, a centred one its centre value: they
+    // differ at every edge, so they must never share a cache entry.
+    let rays = if job.no_jitter { "centres" } else { "jitter" };
     h.update(format!(
-        "{what}|{}x{}|b{}|spp{}|v{}",
+        "{what}|{}x{}|b{}|spp{}|{rays}|v{}",
         job.width,
         job.height,
         job.bounces,

@@ -1,6 +1,7 @@
 //! report.json (every number, machine-readable) and report.md (tables + figures).
-use super::metrics::{Split, StreamMetrics};
-use super::{Config, EvalArgs, Run, figures};
+use super::metrics::Split;
+use super::ratios::{method_of, ratio, ratios, stderr_of, white_of, with_se};
+use super::{Config, EvalArgs, Run, figures, masks};
 use crate::output::write_atomic;
 use anyhow::Result;
 use blueshift_device::Device;
@@ -8,74 +9,6 @@ use blueshift_render::Method;
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::path::Path;
-
-/// Ratios of a run's metrics to white noise of the same configuration.
-#[derive(Debug, Clone, Copy, serde::Serialize)]
-pub struct Ratios {
-    pub rmse: f64,
-    pub p1: f64,
-    pub p2: f64,
-    pub lf: f64,
-    pub p1_smooth: f64,
-    pub p1_edge: f64,
-    pub ema_p1: f64,
-    pub ema_lf: f64,
-}
-
-pub fn ratios(
-    m: &StreamMetrics,
-    ema: &StreamMetrics,
-    w: &StreamMetrics,
-    wema: &StreamMetrics,
-) -> Ratios {
-    let r = |a: f64, b: f64| if b > 0.0 { a / b } else { f64::NAN };
-    Ratios {
-        rmse: r(m.rmse.all, w.rmse.all),
-        p1: r(m.p1.all, w.p1.all),
-        p2: r(m.p2.all, w.p2.all),
-        lf: r(m.lf, w.lf),
-        p1_smooth: r(m.p1.smooth, w.p1.smooth),
-        p1_edge: r(m.p1.edge, w.p1.edge),
-        ema_p1: r(ema.p1.all, wema.p1.all),
-        ema_lf: r(ema.lf, wema.lf),
-    }
-}
-
-/// Standard error of the P1 ratio to white across sequences: the ratios of sequence i of both
-/// runs (same camera and references), their sample standard deviation over sqrt(n). NaN for
-/// fewer than 2 sequences. Tells whether two methods (or a method and a bar) differ by more
-/// than the choice of initial seeds.
-pub fn p1_ratio_stderr(m: &[f64], w: &[f64]) -> f64 {
-    let r: Vec<f64> = m.iter().zip(w).map(|(a, b)| a / b).collect();
-    let n = r.len() as f64;
-    if r.len() < 2 {
-        return f64::NAN;
-    }
-    let mean = r.iter().sum::<f64>() / n;
-    let var = r.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (var / n).sqrt()
-}
-
-/// `p1_ratio_stderr` of one pixel set (`all` or `edge`) of two runs.
-fn stderr_of(r: &Run, w: &Run, pick: fn(&Split) -> f64) -> f64 {
-    let m: Vec<f64> = r.p1_per_sequence.iter().map(pick).collect();
-    let w: Vec<f64> = w.p1_per_sequence.iter().map(pick).collect();
-    p1_ratio_stderr(&m, &w)
-}
-
-/// `value ± se` when the spread is known (2 or more sequences), else the value alone.
-fn with_se(value: f64, se: f64) -> String {
-    if se.is_finite() {
-        format!("{value:.3} ± {se:.3}")
-    } else {
-        format!("{value:.3}")
-    }
-}
-
-fn white_of<'a>(runs: &'a [Run], c: &Config) -> Option<&'a Run> {
-    runs.iter()
-        .find(|r| r.method == Method::White && &r.config == c)
-}
 
 fn commit() -> String {
     std::process::Command::new("git")
@@ -105,7 +38,8 @@ pub fn write(
     let mut json_runs = Vec::new();
     for r in runs {
         let white = white_of(runs, &r.config);
-        let ratio = white.map(|w| {
+        let sobol = method_of(runs, &r.config, Method::Sobol);
+        let vs_white = white.map(|w| {
             ratios(
                 &r.metrics.raw,
                 &r.metrics.ema,
@@ -120,13 +54,20 @@ pub fn write(
             "spp": r.config.spp,
             "raw": r.metrics.raw,
             "ema": r.metrics.ema,
-            "ratios_vs_white": ratio,
+            "ratios_vs_white": vs_white,
             "p1_ratio_stderr": white.map_or(f64::NAN, |w| stderr_of(r, w, |s| s.all)),
             "p1_edge_ratio_stderr": white.map_or(f64::NAN, |w| stderr_of(r, w, |s| s.edge)),
+            "p1_clean_ratio_stderr": white.map_or(f64::NAN, |w| stderr_of(r, w, |s| s.clean)),
             "p1_per_sequence": r.p1_per_sequence,
             "flip": num(r.flip),
+            "flip_clean": num(r.flip_clean),
+            "flip_ratio_vs_sobol": num(sobol.map_or(f64::NAN, |s| ratio(r.flip, s.flip))),
+            "flip_clean_ratio_vs_sobol":
+                num(sobol.map_or(f64::NAN, |s| ratio(r.flip_clean, s.flip_clean))),
+            "clean_fraction": r.clean_fraction,
             "pass_ms_median": r.pass_ms,
             "p1_per_frame": r.metrics.p1_per_frame,
+            "p1_clean_per_frame": r.metrics.p1_clean_per_frame,
             "seconds": r.seconds,
         });
         if let Some(obj) = v.as_object_mut() {
@@ -143,9 +84,10 @@ pub fn write(
         "settings": {
             "scene": a.scene, "width": a.width, "height": a.height, "frames": a.frames,
             "window": [a.frames / 2, a.frames - 1], "block": a.block,
-            "reference_spp": a.reference_spp, "sequences": a.sequences, "jitter": a.jitter,
+            "reference_spp": a.reference_spp, "sequences": a.sequences, "jitter": !a.no_jitter,
             "ema_alpha": super::metrics::EMA_ALPHA, "spectrum_tile": super::metrics::TILE,
-            "edge_threshold": super::metrics::EDGE_THRESHOLD,
+            "edge_threshold": masks::EDGE_THRESHOLD, "display_white": masks::DISPLAY_WHITE,
+            "emitter_dilation_px": masks::EMITTER_DILATION,
         },
         "device": { "name": info.name, "driver": format!("{} {}", info.driver_name, info.driver_info) },
         "commit": commit(),
@@ -174,7 +116,7 @@ fn markdown(
     writeln!(md, "# Blueshift evaluation: {}\n", a.scene)?;
     writeln!(
         md,
-        "{}x{}, {} frames (metrics over frames {}-{}), block {} (sort-grid-*: {}), reference {} spp, {} sequence(s); \
+        "{}x{}, {} frames (metrics over frames {}-{}), block {} (sort-grid-*: {}), reference {} spp, {} sequence(s), {}; \
          device {} ({} {}); commit {}; {:.0} s.\n",
         a.width,
         a.height,
@@ -185,6 +127,11 @@ fn markdown(
         blueshift_render::GRID_BLOCK,
         a.reference_spp,
         a.sequences,
+        if a.no_jitter {
+            "primary rays through pixel centres (--no-jitter)"
+        } else {
+            "anti-aliasing jitter"
+        },
         info.name,
         info.driver_name,
         info.driver_info,
@@ -194,21 +141,46 @@ fn markdown(
     writeln!(
         md,
         "Ratios are against `white` (fresh seeds every frame) of the same configuration; below 1 is better. \
+        The first columns are on emitter-free pixels: reference luminance below display white ({}) and \
+        more than {} px (square) from any pixel at or above it; they are the headline. \
         P1/P2: RMSE of the error blurred with sigma 1/2 px; LF: share of error power below 0.125 cycles/px \
-        (64x64 Hann tiles); smooth/edge: pixels by reference gradient; EMA: exponential moving average, alpha 0.1. \
-        With 2 or more sequences, P1 and P1 edge show ± the standard error of the per-sequence ratio.\n"
+        (64x64 Hann tiles); smooth/edge: pixels by reference gradient; EMA: exponential moving average, alpha 0.1; \
+        FLIP: of the accumulated image at the last frame, absolute (lower is better), and as a ratio to `sobol` \
+        when the run has it. With 2 or more sequences, the P1 columns show ± the standard error of the \
+        per-sequence ratio.\n",
+        masks::DISPLAY_WHITE,
+        masks::EMITTER_DILATION
     )?;
     for c in configs {
         let cr: Vec<&Run> = runs.iter().filter(|r| &r.config == c).collect();
         let Some(white) = white_of(runs, c) else {
             continue;
         };
+        let sobol = method_of(runs, c, Method::Sobol);
         writeln!(md, "## {}\n", c.label())?;
-        writeln!(
-            md,
-            "| method | RMSE | P1 | P2 | LF | P1 smooth | P1 edge | EMA P1 | EMA LF | FLIP (accum) | permutation passes / trace |"
-        )?;
-        writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|")?;
+        let mut cols = vec![
+            "method",
+            "P1 emitter-free",
+            "EMA P1 emitter-free",
+            "FLIP emitter-free",
+        ];
+        if sobol.is_some() {
+            cols.push("FLIP emitter-free / sobol");
+        }
+        cols.extend([
+            "RMSE",
+            "P1",
+            "P2",
+            "LF",
+            "P1 smooth",
+            "P1 edge",
+            "EMA P1",
+            "EMA LF",
+            "FLIP (accum)",
+            "permutation passes / trace",
+        ]);
+        writeln!(md, "| {} |", cols.join(" | "))?;
+        writeln!(md, "|{}", "---|".repeat(cols.len()))?;
         for r in &cr {
             let q = ratios(
                 &r.metrics.raw,
@@ -216,14 +188,22 @@ fn markdown(
                 &white.metrics.raw,
                 &white.metrics.ema,
             );
-            let (p1, p1_edge) = if r.method == Method::White {
-                (with_se(q.p1, f64::NAN), with_se(q.p1_edge, f64::NAN))
-            } else {
-                (
-                    with_se(q.p1, stderr_of(r, white, |s| s.all)),
-                    with_se(q.p1_edge, stderr_of(r, white, |s| s.edge)),
-                )
+            // White against itself has no spread.
+            let se = |pick: fn(&Split) -> f64| {
+                if r.method == Method::White {
+                    f64::NAN
+                } else {
+                    stderr_of(r, white, pick)
+                }
             };
+            let (p1, p1_edge, p1_clean) = (
+                with_se(q.p1, se(|s| s.all)),
+                with_se(q.p1_edge, se(|s| s.edge)),
+                with_se(q.p1_clean, se(|s| s.clean)),
+            );
+            let flip_vs_sobol = sobol.map_or(String::new(), |s| {
+                format!(" {:.3} |", ratio(r.flip_clean, s.flip_clean))
+            });
             let trace = r.pass_ms.get("trace").copied().unwrap_or(0.0);
             // Every pass a method adds to the path tracer.
             let perm: f64 = blueshift_render::PERMUTE_PASSES
@@ -237,8 +217,12 @@ fn markdown(
             };
             writeln!(
                 md,
-                "| {} | {:.3} | {} | {:.3} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.4} | {} |",
+                "| {} | {} | {:.3} | {:.4} |{} {:.3} | {} | {:.3} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.4} | {} |",
                 r.method.name(),
+                p1_clean,
+                q.ema_p1_clean,
+                r.flip_clean,
+                flip_vs_sobol,
                 q.rmse,
                 p1,
                 q.p2,
@@ -259,7 +243,7 @@ fn markdown(
         )?;
         figures::p1_over_frames(
             &cr,
-            &format!("P1 ratio vs white, {}", c.label()),
+            &format!("P1 ratio vs white (emitter-free pixels), {}", c.label()),
             &out.join(format!("{slug}_p1.png")),
         )?;
         figures::strip(
@@ -270,8 +254,14 @@ fn markdown(
         )?;
         writeln!(
             md,
-            "\nAbsolute white: RMSE {:.4}, P1 {:.4}, LF {:.4}.\n",
-            white.metrics.raw.rmse.all, white.metrics.raw.p1.all, white.metrics.raw.lf
+            "\nAbsolute white: P1 emitter-free {:.4}, EMA P1 emitter-free {:.4}; RMSE {:.4}, P1 {:.4}, LF {:.4}. \
+             Emitter-free pixels: {:.1}% of the last frame.\n",
+            white.metrics.raw.p1.clean,
+            white.metrics.ema.p1.clean,
+            white.metrics.raw.rmse.all,
+            white.metrics.raw.p1.all,
+            white.metrics.raw.lf,
+            100.0 * white.clean_fraction
         )?;
         if out.join(format!("{slug}_radial.png")).exists() {
             writeln!(md, "![radial]({slug}_radial.png)\n")?;
@@ -302,19 +292,4 @@ fn markdown(
         }
     }
     Ok(md)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::p1_ratio_stderr;
-
-    #[test]
-    fn stderr_of_per_sequence_ratios() {
-        // Ratios 0.8 and 0.9: sample sd 0.0707, over sqrt(2) = 0.05.
-        let se = p1_ratio_stderr(&[0.8, 1.8], &[1.0, 2.0]);
-        assert!((se - 0.05).abs() < 1e-12, "{se}");
-        // Equal ratios have no spread; one sequence has none defined.
-        assert_eq!(p1_ratio_stderr(&[1.0, 2.0, 3.0], &[2.0, 4.0, 6.0]), 0.0);
-        assert!(p1_ratio_stderr(&[1.0], &[2.0]).is_nan());
-    }
 }

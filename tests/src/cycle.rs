@@ -1,0 +1,159 @@
+//! `permute/cycle_keys` (sort-cycle): GPU == CPU twin exactly over whole cycles, and the
+//! renderer's seeds stay a permutation that never leaves its block.
+use crate::{Gpu, Lcg};
+use blueshift_device::{Buffer, MemoryLocation};
+use blueshift_permute::{
+    CYCLE_FRAMES, CycleBuffers, CyclePass, PermutePasses, Screen, SortInput, cycle_keys_cpu,
+    is_permutation_of, sort_seeds_cpu,
+};
+use blueshift_render::{Method, RenderConfig, Renderer, default_assets_dir};
+use blueshift_scene::Scene;
+
+/// A volume of `t` random permutations of `n * n` ranks.
+fn volume(n: u32, t: u32, rng: &mut Lcg) -> Vec<u32> {
+    (0..t).flat_map(|_| rng.perm(n * n)).collect()
+}
+
+/// cycle_keys then the sorting pass, frame after frame, on the GPU and on the CPU: the seeds,
+/// keys and mask slices the sort receives and the seeds it leaves agree bit for bit, over more
+/// than a cycle (so the history slots are written, then read back), with ties and NaN keys,
+/// with and without running means, on screens with more and with fewer pixels than a mask
+/// slice.
+#[test]
+fn cycle_keys_and_sort_match_cpu_over_cycles() {
+    let mut gpu = Gpu::new();
+    let dev = gpu.dev().clone();
+    let cycle = CyclePass::new(&dev).unwrap();
+    let mut permute = PermutePasses::new(&dev).unwrap();
+    let mut rng = Lcg(0xc7c1e);
+    for (w, h, n) in [(37u32, 23u32, 16u32), (10, 7, 16)] {
+        let sc = Screen::new(w, h, n).unwrap();
+        let vol = volume(n, 4, &mut rng);
+        let init: Vec<u32> = rng.perm(sc.seed_count() as u32);
+        let pixels = (w * h) as usize;
+        let host = MemoryLocation::GpuToCpu;
+        let seeds = Buffer::from_slice(&dev, "cycle.seeds", &init).unwrap();
+        let history_len = CYCLE_FRAMES as usize * pixels;
+        let mut history = Buffer::new(&dev, "cycle.history", history_len as u64 * 8, host).unwrap();
+        history.write(0, &vec![[0u32; 2]; history_len]).unwrap();
+        let volb = Buffer::from_slice(&dev, "cycle.volume", &vol).unwrap();
+        let keys = Buffer::new(&dev, "cycle.keys", pixels as u64 * 16, host).unwrap();
+        let mask = Buffer::new(&dev, "cycle.mask", u64::from(n * n) * 4, host).unwrap();
+        let mut est = Buffer::new(&dev, "cycle.estimate", pixels as u64 * 16, host).unwrap();
+        let mut accum = Buffer::new(&dev, "cycle.accum", pixels as u64 * 16, host).unwrap();
+        let (mut cpu_seeds, mut cpu_hist) = (init.clone(), vec![[0u32; 2]; history_len]);
+        for frame in 0..u64::from(CYCLE_FRAMES) + 5 {
+            // Few distinct values (ties), a NaN now and then.
+            let lum: Vec<f32> = (0..pixels)
+                .map(|_| match rng.next_u32() % 9 {
+                    0 => f32::NAN,
+                    k => k as f32 * 0.25,
+                })
+                .collect();
+            est.write(0, &lum.iter().map(|&l| [l, l, l, l]).collect::<Vec<_>>())
+                .unwrap();
+            // Running means from a coarser set of values (key - mean ties too); none on
+            // every third frame (an accumulation restart: raw keys).
+            let means: Vec<f32> = (0..pixels)
+                .map(|_| (rng.next_u32() % 5) as f32 * 0.5)
+                .collect();
+            accum
+                .write(0, &means.iter().map(|&m| [m, m, m, m]).collect::<Vec<_>>())
+                .unwrap();
+            let count = if frame % 3 == 0 { 0 } else { frame as u32 };
+            let cp = sc.cycle_params(frame, n, 4, count);
+            let sp = blueshift_permute::SortParams {
+                mask_size: n,
+                ..sc.sort_params(8, (0, 0)).unwrap()
+            };
+            let rec = gpu.rec.as_mut().unwrap();
+            rec.begin().unwrap();
+            rec.begin_pass("cycle_keys").unwrap();
+            let b = CycleBuffers {
+                estimate: &est,
+                seeds: &seeds,
+                history: &history,
+                volume: &volb,
+                keys: &keys,
+                mask: &mask,
+                accum: &accum,
+            };
+            cycle.cycle_keys(rec, &cp, &b).unwrap();
+            rec.begin_pass("sort_seeds").unwrap();
+            let input = SortInput {
+                estimate: &keys,
+                mask: &mask,
+                classes: None,
+                history: None,
+                pairs: false,
+                stats: None,
+            };
+            permute.sort_seeds(rec, &sp, &input, &seeds).unwrap();
+            rec.submit_and_wait().unwrap();
+
+            let out = cycle_keys_cpu(&cp, &lum, &means, &mut cpu_seeds, &mut cpu_hist, &vol);
+            let gpu_keys: Vec<[f32; 4]> = keys.read().unwrap();
+            for (g, c) in gpu_keys[..pixels].iter().zip(&out.keys) {
+                assert_eq!(g[3].to_bits(), c.to_bits(), "{w}x{h} frame {frame}");
+            }
+            assert_eq!(
+                mask.read::<u32>().unwrap()[..(n * n) as usize],
+                out.mask[..]
+            );
+            let zeros = vec![0u32; pixels];
+            let no_history = vec![0f32; pixels];
+            sort_seeds_cpu(
+                &sp,
+                &out.keys,
+                &out.mask,
+                &zeros,
+                &no_history,
+                &mut cpu_seeds,
+            );
+            let got: Vec<u32> = seeds.read().unwrap();
+            assert_eq!(got[..init.len()], cpu_seeds[..], "{w}x{h} frame {frame}");
+            assert_eq!(
+                history.read::<[u32; 2]>().unwrap()[..history_len],
+                cpu_hist[..]
+            );
+            assert!(is_permutation_of(&cpu_seeds, &init));
+        }
+    }
+}
+
+/// The renderer's sort-cycle seeds over two cycles: a permutation of the initial seeds at
+/// every frame, and each 8x8 block keeps its own seeds (the history slots stay valid only so).
+#[test]
+fn sort_cycle_seeds_stay_in_their_blocks() {
+    let gpu = Gpu::new();
+    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
+    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
+    let (w, h) = (37u32, 21u32);
+    let cfg = RenderConfig {
+        bounces: 1,
+        method: Method::SORT_CYCLE,
+        ..RenderConfig::new(w, h)
+    };
+    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let init = r.initial_seeds().to_vec();
+    let stride = init.len() / Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
+    let block_sets = |seeds: &[u32]| {
+        let mut sets = std::collections::BTreeMap::<(u32, u32), Vec<u32>>::new();
+        for y in 0..h {
+            for x in 0..w {
+                let v = seeds[y as usize * stride + x as usize];
+                sets.entry((x / 8, y / 8)).or_default().push(v);
+            }
+        }
+        sets.values_mut().for_each(|v| v.sort_unstable());
+        sets
+    };
+    let want = block_sets(&init);
+    for _ in 0..2 * CYCLE_FRAMES + 1 {
+        r.render_frame().unwrap();
+        let seeds = r.read_seeds().unwrap();
+        assert!(is_permutation_of(&seeds, &init));
+        assert_eq!(block_sets(&seeds), want);
+    }
+    assert_ne!(r.read_seeds().unwrap(), init, "seeds never moved");
+}
