@@ -48,7 +48,7 @@ pub struct RenderArgs {
     pub frames: u32,
     /// A preset (white, sobol, hbo19, mask-r2, stbn, sort, sort-retarget, sort-grid-history,
     /// sort-grid-adaptive) or a spelled-out permutation, e.g. `sort:transport=grid,key=demod`.
-    #[arg(long, default_value = "sort-retarget")]
+    #[arg(long, default_value = "sort-cycle")]
     pub method: String,
     /// static, pan:PX (image-space pan, px/frame), orbit:DEG (deg/frame), swing:DEG (an orbit
     /// turning back after 12 degrees), or a keyframe JSON file.

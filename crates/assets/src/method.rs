@@ -4,6 +4,9 @@ use crate::formats::{load_mask, load_retarget, load_stbn};
 use blueshift_sampling::hbo19::KeyTable;
 use std::path::{Path, PathBuf};
 
+/// Where [`MethodAssets::load`] finds the FAST mask (`blueshift-tools fast` writes it).
+pub const FAST_FILE: &str = "masks/fast64x32_s1_a0.1.r16";
+
 /// Mask tile, retarget table and spatio-temporal mask, flattened for upload.
 #[derive(Debug, Clone)]
 pub struct MethodAssets {
@@ -19,6 +22,9 @@ pub struct MethodAssets {
     pub stbn_n: u32,
     pub stbn_frames: u32,
     pub stbn: Vec<u32>,
+    /// The FAST mask (optimised for a Gaussian sigma 1 and an EMA alpha 0.1), the same size as
+    /// the spatio-temporal mask; empty when the asset is missing (then `fast` is unavailable).
+    pub fast: Vec<u32>,
     /// HBO+19 key tables of one tile, one per sample count, ascending spp (may be empty:
     /// then the `hbo19` sampler is unavailable).
     pub keys: Vec<KeyTable>,
@@ -54,7 +60,27 @@ impl MethodAssets {
             &dir.join("masks/stbn64x32.r16"),
             64,
         )?;
-        a.with_keys_dir(&dir.join("keys"))
+        a.with_fast(&dir.join(FAST_FILE))?
+            .with_keys_dir(&dir.join("keys"))
+    }
+
+    /// Adds the FAST volume at `path` if it exists; it must match the spatio-temporal mask's
+    /// size.
+    pub fn with_fast(mut self, path: &Path) -> Result<Self> {
+        if !path.is_file() {
+            return Ok(self);
+        }
+        let v = load_stbn(path, self.stbn_n as usize)?;
+        if v.t as u32 != self.stbn_frames {
+            return Err(AssetError::Mismatch(format!(
+                "FAST mask {} has {} slices, the spatio-temporal mask {}",
+                path.display(),
+                v.t,
+                self.stbn_frames
+            )));
+        }
+        self.fast = v.ranks.iter().map(|&r| r as u32).collect();
+        Ok(self)
     }
 
     /// Adds every `hbo19_*.bin` key table of `dir` (none if `dir` does not exist). The tables
@@ -140,6 +166,7 @@ impl MethodAssets {
             stbn_n: v.n as u32,
             stbn_frames: v.t as u32,
             stbn: v.ranks.iter().map(|&r| r as u32).collect(),
+            fast: Vec::new(),
             keys: Vec::new(),
         })
     }

@@ -97,6 +97,8 @@ pub struct Renderer {
     keys: Buffer,
     keys_spp: Option<u32>,
     stbn: Buffer,
+    /// The FAST mask, when the asset exists.
+    fast: Option<Buffer>,
     table: Buffer,
     assets: MethodAssets,
     camera: Camera,
@@ -169,6 +171,11 @@ impl Renderer {
             keys: Buffer::from_slice(dev, "assets.hbo19_keys", &words)?,
             keys_spp,
             stbn: Buffer::from_slice(dev, "assets.stbn", &assets.stbn)?,
+            fast: if assets.fast.is_empty() {
+                None
+            } else {
+                Some(Buffer::from_slice(dev, "assets.fast", &assets.fast)?)
+            },
             table: Buffer::from_slice(dev, "assets.retarget", &assets.table)?,
             assets: assets.clone(),
             camera: scene.camera_or_default(),
@@ -285,7 +292,7 @@ impl Renderer {
         }
         let (mask_mode, mask_size, mask_frames, off) = match m {
             Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),
-            Method::Stbn => (
+            Method::Stbn | Method::Fast => (
                 MASK_MODE_SPATIOTEMPORAL,
                 self.assets.stbn_n,
                 self.assets.stbn_frames,
@@ -335,10 +342,10 @@ impl Renderer {
             exposure: self.cfg.exposure,
         };
         let (cur, next) = (self.current, 1 - self.current);
-        let mask = if m == Method::Stbn {
-            &self.stbn
-        } else {
-            &self.mask
+        let mask = match m {
+            Method::Stbn => &self.stbn,
+            Method::Fast => self.fast.as_ref().ok_or_else(no_fast)?,
+            _ => &self.mask,
         };
         if m.cycles_points() && self.cycle.is_none() {
             let state = cycle::CycleState::new(&self.dev, &self.screen, self.assets.stbn_n)?;
@@ -465,6 +472,13 @@ impl Renderer {
     pub fn restart_accumulation(&mut self) {
         self.accumulated = 0;
     }
+}
+
+fn no_fast() -> RenderError {
+    RenderError::Asset(blueshift_assets::AssetError::Missing(format!(
+        "no FAST mask ({}; `blueshift-tools fast` makes it)",
+        blueshift_assets::FAST_FILE
+    )))
 }
 
 /// Per-frame mask offset of `mask-r2`: the R2 sequence scaled to the tile (rounded, which is

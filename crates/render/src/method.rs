@@ -100,6 +100,8 @@ pub enum Method {
     MaskR2,
     /// Spatio-temporal blue-noise mask slices in the same role.
     Stbn,
+    /// FAST mask slices (optimised for a Gaussian blur and an EMA) in the same role.
+    Fast,
     /// Per-pixel seeds permuted between frames.
     Permute(Permutation),
 }
@@ -133,6 +135,7 @@ const HISTORY: Permutation = Permutation {
 };
 
 const CYCLE: Permutation = Permutation {
+    grouping: Grouping::Surfaces,
     transport: Transport::None,
     points: Points::Cycle,
     ..PAPER
@@ -150,17 +153,18 @@ impl Method {
         pairs: Pairs::Adaptive,
         ..HISTORY
     });
-    /// Sorting in fixed blocks over a cycle of points per seed, against spatio-temporal mask
-    /// slices ([`Points::Cycle`]).
+    /// Sorting within the surfaces of fixed blocks over a cycle of block-net points per seed,
+    /// against spatio-temporal mask slices ([`Points::Cycle`]).
     pub const SORT_CYCLE: Method = Method::Permute(CYCLE);
 
     /// The named presets `--method` offers, in the order of the documentation.
-    pub const PRESETS: [(&'static str, Method); 10] = [
+    pub const PRESETS: [(&'static str, Method); 11] = [
         ("white", Method::White),
         ("sobol", Method::Sobol),
         ("hbo19", Method::Hbo19),
         ("mask-r2", Method::MaskR2),
         ("stbn", Method::Stbn),
+        ("fast", Method::Fast),
         ("sort", Method::SORT),
         ("sort-retarget", Method::SORT_RETARGET),
         ("sort-grid-history", Method::SORT_GRID_HISTORY),

@@ -133,7 +133,9 @@ mod tests {
         assert_eq!(m.name(), "sort:key=demod,transport=grid");
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
-        let c: Method = "sort:points=cycle".parse().expect("valid");
+        let c: Method = "sort:points=cycle,grouping=surfaces"
+            .parse()
+            .expect("valid");
         assert_eq!(c, Method::SORT_CYCLE);
         assert!(c.cycles_points() && c.advances_index() && c.block(4) == crate::GRID_BLOCK);
         assert_eq!(c.default_sampler(), blueshift_sampling::Sampler::BlockNet);

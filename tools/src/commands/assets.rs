@@ -62,6 +62,13 @@ pub fn jobs(root: &str) -> Vec<Job> {
             root,
         ),
         job(
+            "fast --size 64 --frames 32 --sigma 1 --temporal ema --alpha 0.1 --iterations 1024 \
+             --rounds 64 --seed 2024 --out {root}/masks/fast64x32_s1_a0.1.r16",
+            2024,
+            &["masks/fast64x32_s1_a0.1.r16", "masks/fast64x32_s1_a0.1.png"],
+            root,
+        ),
+        job(
             "retarget --mask {root}/masks/bn32.r16 --shift 24,18 --radius 6 --solver exact --seed 1 \
              --out {root}/retarget/bn32_s24_18_r6.bin",
             1,

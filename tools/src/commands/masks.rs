@@ -17,7 +17,7 @@ pub(crate) fn preview_path(out: &Path) -> PathBuf {
 }
 
 /// 16-bit grayscale PNG of raw ranks, slices stacked vertically (`n x n*frames`).
-fn save_preview(ranks: &[u16], n: usize, path: &Path) -> anyhow::Result<()> {
+pub(crate) fn save_preview(ranks: &[u16], n: usize, path: &Path) -> anyhow::Result<()> {
     let h = (ranks.len() / n) as u32;
     let img =
         image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(n as u32, h, ranks.to_vec())

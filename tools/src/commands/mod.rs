@@ -2,6 +2,7 @@
 
 pub mod assets;
 pub(crate) mod dither;
+pub(crate) mod fast;
 pub(crate) mod figures;
 pub mod keys;
 pub(crate) mod masks;

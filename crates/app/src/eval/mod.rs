@@ -28,7 +28,10 @@ pub struct EvalArgs {
     #[arg(long, default_value = "cornell-box")]
     pub scene: String,
     /// Comma-separated methods; `white` is always added (ratios are against it).
-    #[arg(long, default_value = "white,sobol,mask-r2,stbn,sort,sort-retarget")]
+    #[arg(
+        long,
+        default_value = "sort-cycle,white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive"
+    )]
     pub methods: String,
     /// Comma-separated samples per pixel per frame.
     #[arg(long, default_value = "1")]

@@ -2,8 +2,8 @@
 use super::input::Action;
 use blueshift_render::{FrameStats, Method};
 
-/// The methods of keys 1-9.
-pub const VIEW_METHODS: [Method; 9] = [
+/// The methods of keys 1-9 and 0.
+pub const VIEW_METHODS: [Method; 10] = [
     Method::White,
     Method::Sobol,
     Method::MaskR2,
@@ -13,6 +13,7 @@ pub const VIEW_METHODS: [Method; 9] = [
     Method::SORT_GRID_HISTORY,
     Method::SORT_GRID_ADAPTIVE,
     Method::Hbo19,
+    Method::SORT_CYCLE,
 ];
 /// Limits of the interactive controls (the renderer accepts more; these stay interactive).
 pub const MAX_SPP: u32 = 64;
@@ -138,6 +139,7 @@ pub fn pass_times(stats: &[FrameStats], present_ms: f64) -> String {
         ("trace", "trace"),
         ("history_key", "history"),
         ("classify_pixels", "classify"),
+        ("cycle_keys", "cycle"),
         ("sort_seeds", "sort"),
         ("retarget_seeds", "retarget"),
         ("accumulate", "accum"),
@@ -162,7 +164,7 @@ pub fn title(s: &Settings, frame_ms: f64, stats: &[FrameStats], present_ms: f64)
         s.method_label(),
         s.spp,
         s.bounces,
-        s.block,
+        s.methods[0].block(s.block), // the block the (left) method sorts with
         frame_ms,
         if frame_ms > 0.0 {
             1000.0 / frame_ms
@@ -187,7 +189,7 @@ mod tests {
 
     fn settings() -> Settings {
         Settings {
-            methods: [Method::SORT_RETARGET, Method::White],
+            methods: [Method::SORT_CYCLE, Method::White],
             side: 0,
             spp: 1,
             bounces: 4,
@@ -259,7 +261,7 @@ mod tests {
         s.apply(Action::ToggleAccumulation);
         let t = title(&s, 50.0, &[stats.clone(), stats], 0.3);
         assert!(
-            t.contains("sort-retarget | 1 spp | 4 bounces | block 4"),
+            t.contains("sort-cycle | 1 spp | 4 bounces | block 8"),
             "{t}"
         );
         assert!(t.contains("50.0 ms (20.0 fps)"), "{t}");

@@ -60,6 +60,7 @@ pub enum Action {
 pub fn action_of(key: Key) -> Option<Action> {
     Some(match key {
         Key::Char(c @ '1'..='9') => Action::Method(c as usize - '1' as usize),
+        Key::Char('0') => Action::Method(9),
         Key::Char('b') => Action::Block(1),
         Key::Char('B') => Action::Block(-1),
         Key::Char('+' | '=') => Action::Spp(1),
@@ -267,6 +268,7 @@ mod tests {
         assert_eq!(i.handle(press(Key::Char('1'))), Some(Action::Method(0)));
         assert_eq!(i.handle(press(Key::Char('6'))), Some(Action::Method(5)));
         assert_eq!(i.handle(press(Key::Char('9'))), Some(Action::Method(8)));
+        assert_eq!(i.handle(press(Key::Char('0'))), Some(Action::Method(9)));
         assert_eq!(i.handle(press(Key::Char('x'))), None);
         assert_eq!(i.handle(press(Key::Char('b'))), Some(Action::Block(1)));
         assert_eq!(i.handle(press(Key::Char('B'))), Some(Action::Block(-1)));

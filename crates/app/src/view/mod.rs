@@ -28,7 +28,7 @@ pub struct ViewArgs {
     #[arg(long, default_value_t = 2)]
     pub scale: u32,
     /// Method of the view (the left side in split-screen).
-    #[arg(long, default_value = "sort-retarget")]
+    #[arg(long, default_value = "sort-cycle")]
     pub method: String,
     /// Method of the right side in split-screen.
     #[arg(long, default_value = "white")]
