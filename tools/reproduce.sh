@@ -18,16 +18,18 @@ cd "$(dirname "$0")/.."
 
 # name | arguments of `blueshift eval` besides the common ones below
 RUNS=(
-  "cornell|--methods white,sobol,hbo19,mask-r2,stbn,sort,sort-retarget,sort-grid-history,sort-grid-adaptive --camera static,pan:8,orbit:1 --bounces 1,8"
-  "textured|--scene textured --methods white,sobol,stbn,sort-retarget,sort-grid-history,sort-grid-adaptive --camera static,orbit:1 --bounces 1"
+  "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8"
+  "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1 --bounces 1,8"
 )
 # name | file in the run's output | name under docs/figures/
 FIGURES=(
   "cornell|static_b1_spp1_white_error.png|cornell-direct-static_white_error.png"
   "cornell|static_b1_spp1_sort-retarget_error.png|cornell-direct-static_sort-retarget_error.png"
+  "cornell|static_b1_spp1_sort-cycle_error.png|cornell-direct-static_sort-cycle_error.png"
+  "cornell|front.png|cornell-front.png"
   "cornell|static_b1_spp1_sort-grid-adaptive_error.png|cornell-direct-static_sort-grid-adaptive_error.png"
   "cornell|static_b1_spp1_radial.png|cornell-direct-static_radial.png"
-  "cornell|pan-8_b1_spp1_p1.png|cornell-direct-pan8_p1.png"
+  "cornell|pan-1_b1_spp1_p1.png|cornell-direct-pan1_p1.png"
   "textured|orbit-1_b1_spp1_frames.png|textured-orbit_frames.png"
 )
 
@@ -62,7 +64,7 @@ if ((quick)); then
   results_md=out/results/results.md
   figures_dir=out/results/figures
 else
-  common="--spp 1 --frames 48 --width 128 --height 128 --sequences 2"
+  common="--spp 1 --frames 64 --width 128 --height 128 --sequences 4"
   results_md=docs/results.md
   figures_dir=docs/figures
 fi
@@ -91,14 +93,16 @@ tables() { # report.md
   awk '
     BEGIN {
       FS = " *[|] *"
-      ncol = split("P1|EMA P1|RMSE|FLIP (accum)", cols, "|")
-      title["P1"] = "P1 ratio to `white` per frame (frames in the metrics window; ± standard error over sequences)"
-      title["EMA P1"] = "EMA P1 ratio to `white`: the same metric on the exponential moving average of the frames (alpha 0.1)"
-      title["RMSE"] = "RMSE ratio to `white` (the permutation only moves error: should stay within 3%)"
-      title["FLIP (accum)"] = "FLIP of the accumulated image (running mean since the camera last moved) at the last frame, absolute: lower is better"
+      ncol = split("P1 emitter-free|EMA P1 emitter-free|FLIP emitter-free|RMSE", cols, "|")
+      title["P1 emitter-free"] = "P1 ratio to `white` per frame on emitter-free pixels (frames in the metrics window; ± standard error over sequences)"
+      title["EMA P1 emitter-free"] = "EMA P1 ratio to `white` on emitter-free pixels: the same metric on the exponential moving average of the frames (alpha 0.1)"
+      title["FLIP emitter-free"] = "FLIP of the accumulated image (running mean since the camera last moved) at the last frame, emitter-free pixels, absolute: lower is better"
+      title["RMSE"] = "RMSE ratio to `white`, all pixels (the permutation only moves error: should stay within 3%)"
     }
     NR == 3 { info = $0; sub(/; commit [^;]*;/, ";", info) }
-    /^## / { cfg = substr($0, 4); ncfg++; cfgs[ncfg] = cfg; next }
+    /^## Per frame against accumulated/ { skip = 1; next }
+    /^## / { skip = 0; cfg = substr($0, 4); ncfg++; cfgs[ncfg] = cfg; next }
+    skip { next }
     /^[|] method [|]/ { for (i = 2; i < NF; i++) at[$i] = i; next }
     /^[|]---/ { next }
     /^[|] / && ncfg > 0 {

@@ -2,6 +2,7 @@
 //! writes a report (report.md, report.json, PNG figures) with the metrics of docs/results.md.
 mod figures;
 mod flip;
+mod front;
 mod masks;
 mod metrics;
 mod ratios;

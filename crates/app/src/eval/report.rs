@@ -1,7 +1,7 @@
 //! report.json (every number, machine-readable) and report.md (tables + figures).
 use super::metrics::Split;
 use super::ratios::{method_of, ratio, ratios, stderr_of, white_of, with_se};
-use super::{Config, EvalArgs, Run, figures, masks};
+use super::{Config, EvalArgs, Run, figures, front, masks};
 use crate::output::write_atomic;
 use anyhow::Result;
 use blueshift_device::Device;
@@ -116,7 +116,7 @@ fn markdown(
     writeln!(md, "# Blueshift evaluation: {}\n", a.scene)?;
     writeln!(
         md,
-        "{}x{}, {} frames (metrics over frames {}-{}), block {} (sort-grid-*: {}), reference {} spp, {} sequence(s), {}; \
+        "{}x{}, {} frames (metrics over frames {}-{}), block {} (sort-grid-*, sort-cycle: {}), reference {} spp, {} sequence(s), {}; \
          device {} ({} {}); commit {}; {:.0} s.\n",
         a.width,
         a.height,
@@ -151,6 +151,21 @@ fn markdown(
         masks::DISPLAY_WHITE,
         masks::EMITTER_DILATION
     )?;
+    let points = front::front_points(configs, runs);
+    if points.len() > 1 {
+        writeln!(
+            md,
+            "## Per frame against accumulated\n\n\
+             Geometric means over the configurations below (emitter-free P1 ratios to white); \
+             lower left is better on both.\n\n\
+             | method | per-frame P1 | EMA P1 |\n|---|---|---|"
+        )?;
+        for p in &points {
+            writeln!(md, "| {} | {:.3} | {:.3} |", p.method, p.per_frame, p.ema)?;
+        }
+        front::plot(&points, "per frame vs EMA", &out.join("front.png"))?;
+        writeln!(md, "\n![front](front.png)\n")?;
+    }
     for c in configs {
         let cr: Vec<&Run> = runs.iter().filter(|r| &r.config == c).collect();
         let Some(white) = white_of(runs, c) else {
