@@ -30,7 +30,7 @@ FIGURES=(
   "cornell|static_b1_spp1_sort-grid-adaptive_error.png|cornell-direct-static_sort-grid-adaptive_error.png"
   "cornell|static_b1_spp1_radial.png|cornell-direct-static_radial.png"
   "cornell|pan-1_b1_spp1_p1.png|cornell-direct-pan1_p1.png"
-  "textured|orbit-1_b1_spp1_frames.png|textured-orbit_frames.png"
+  "textured|pan-1_b1_spp1_frames.png|textured-pan_frames.png"
 )
 
 usage() { sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; }

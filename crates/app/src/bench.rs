@@ -59,10 +59,37 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
         cfg.method,
         dev.info().name
     );
-    for (name, mut v) in per_pass {
-        v.sort_by(f64::total_cmp);
-        println!("  pass {name:<10} median {:9.3} ms", v[v.len() / 2]);
+    // Medians per pass; each also per pixel and as a share of the trace pass, the measure of
+    // what a permutation method costs on top of the path tracing.
+    let medians: Vec<(String, f64)> = per_pass
+        .into_iter()
+        .map(|(name, mut v)| {
+            v.sort_by(f64::total_cmp);
+            (name, v[v.len() / 2])
+        })
+        .collect();
+    let pixels = cfg.width as f64 * cfg.height as f64;
+    let trace = medians
+        .iter()
+        .find(|(n, _)| n == "trace")
+        .map_or(f64::NAN, |p| p.1);
+    for (name, m) in &medians {
+        println!(
+            "  pass {name:<16} median {m:9.3} ms {:8.2} ns/px {:7.2}% of trace",
+            m * 1e6 / pixels,
+            100.0 * m / trace
+        );
     }
+    let permute: f64 = medians
+        .iter()
+        .filter(|(n, _)| blueshift_render::PERMUTE_PASSES.contains(&n.as_str()))
+        .map(|p| p.1)
+        .sum();
+    println!(
+        "  permutation passes {permute:.3} ms {:.2} ns/px: {:.2}% of trace",
+        permute * 1e6 / pixels,
+        100.0 * permute / trace
+    );
     println!(
         "  trace loop iterations per SIMD batch: at most {loop_iterations} \
          (llvmpipe limit {LLVMPIPE_LOOP_LIMIT})"

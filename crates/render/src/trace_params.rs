@@ -1,0 +1,86 @@
+//! The trace pass's push constants per method, and the mask offsets of `mask-r2`.
+use crate::{Method, RenderError, Renderer};
+use blueshift_layout::params::{
+    MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
+    TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
+};
+use blueshift_permute::CYCLE_FRAMES;
+
+impl Renderer {
+    /// The path tracer's push constants for the next frame (camera, view window, method).
+    pub fn trace_params(&self) -> TraceParams {
+        let c = &self.cfg;
+        let (vw, vh) = c.view_size.unwrap_or((c.width, c.height));
+        let basis = self.camera.basis(vw as f32 / vh as f32);
+        let m = c.method;
+        let n = self.assets.n;
+        let mut flags = 0;
+        if m == Method::White || c.frame_salt {
+            flags |= TRACE_FLAG_SALT_FRAME;
+        }
+        if m.advances_index() {
+            flags |= TRACE_FLAG_ADVANCE_INDEX;
+        }
+        if c.no_jitter {
+            flags |= TRACE_FLAG_NO_JITTER;
+        }
+        if m.demodulates() {
+            flags |= TRACE_FLAG_DEMODULATE;
+        }
+        let (mask_mode, mask_size, mask_frames, off) = match m {
+            Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),
+            Method::Stbn | Method::Fast => (
+                MASK_MODE_SPATIOTEMPORAL,
+                self.assets.stbn_n,
+                self.assets.stbn_frames,
+                (0, 0),
+            ),
+            _ => (MASK_MODE_NONE, n, 1, (0, 0)),
+        };
+        TraceParams {
+            cam_origin: basis.position,
+            cam_forward: basis.forward,
+            cam_right: basis.right,
+            cam_up: basis.up,
+            width: c.width,
+            height: c.height,
+            stride: self.screen.stride(),
+            // The sampler's frame: with a point cycle, the phase (the index repeats).
+            frame: if m.cycles_points() {
+                (self.frame % u64::from(CYCLE_FRAMES)) as u32
+            } else {
+                self.frame as u32
+            },
+            spp: c.spp,
+            sample_index: 0,
+            sample_count: 1,
+            max_bounces: c.bounces,
+            sampler_kind: c.effective_sampler() as u32,
+            flags,
+            mask_mode,
+            mask_size,
+            mask_frames,
+            mask_offset_x: off.0,
+            mask_offset_y: off.1,
+            view_offset: glam::Vec2::new(self.view_offset.0, self.view_offset.1),
+            view_size: glam::Vec2::new(vw as f32, vh as f32),
+        }
+    }
+}
+
+pub(crate) fn no_fast() -> RenderError {
+    RenderError::Asset(blueshift_assets::AssetError::Missing(format!(
+        "no FAST mask ({}; `blueshift-tools fast` makes it)",
+        blueshift_assets::FAST_FILE
+    )))
+}
+
+/// Per-frame mask offset of `mask-r2`: the R2 sequence scaled to the tile (rounded, which is
+/// fine here: no retarget table depends on it).
+pub fn r2_offset(frame: u64, n: u32) -> (u32, u32) {
+    let g = blueshift_sampling::r2::PLASTIC;
+    let t = frame as f64;
+    let fx = (0.5 + t / g).fract();
+    let fy = (0.5 + t / (g * g)).fract();
+    ((fx * n as f64) as u32 % n, (fy * n as f64) as u32 % n)
+}
