@@ -1,39 +1,9 @@
 //! End-to-end runs of the `blueshift-tools` binary on small inputs.
 
+mod common;
+
+use common::{fails, ok, s};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn tools(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_blueshift-tools"))
-        .args(args)
-        .output()
-        .expect("spawning blueshift-tools")
-}
-
-fn ok(args: &[&str]) -> String {
-    let o = tools(args);
-    assert!(
-        o.status.success(),
-        "{args:?} failed:\n{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn fails(args: &[&str], needle: &str) {
-    let o = tools(args);
-    assert!(!o.status.success(), "{args:?} should fail");
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains(needle),
-        "{args:?}: stderr lacks {needle:?}:\n{err}"
-    );
-    assert!(!err.contains("panicked"), "{args:?} panicked:\n{err}");
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().expect("UTF-8 temp path")
-}
 
 #[test]
 fn masks_spectrum_dither_retarget_figures() {

@@ -1,43 +1,13 @@
 //! `fast` and `fast-bench` end to end, and the committed FAST texture against STBN.
 
+mod common;
+
+use common::{fails, ok, s};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use blueshift_assets::load_stbn;
 use blueshift_tools::fast::bench::{Integrand, filtered_rmse};
 use blueshift_tools::fast::{Params, Temporal, Volume};
-
-fn tools(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_blueshift-tools"))
-        .args(args)
-        .output()
-        .expect("spawning blueshift-tools")
-}
-
-fn ok(args: &[&str]) -> String {
-    let o = tools(args);
-    assert!(
-        o.status.success(),
-        "{args:?} failed:\n{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn fails(args: &[&str], needle: &str) {
-    let o = tools(args);
-    assert!(!o.status.success(), "{args:?} should fail");
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains(needle),
-        "{args:?}: stderr lacks {needle:?}:\n{err}"
-    );
-    assert!(!err.contains("panicked"), "{args:?} panicked:\n{err}");
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().expect("UTF-8 temp path")
-}
 
 fn assets() -> PathBuf {
     Path::new(&std::env::var_os("CARGO_MANIFEST_DIR").expect("run under cargo")).join("../assets")
