@@ -47,6 +47,25 @@ fn missing_asset_and_camera_path_files() {
 }
 
 #[test]
+fn fast_without_its_mask_names_the_tool() {
+    let c = Case::new();
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let dir = c.path("assets-without-fast");
+    for f in [
+        "masks/bn64.r16",
+        "masks/stbn64x32.r16",
+        "retarget/bn64_s48_36_r6.bin",
+    ] {
+        let to = dir.join(f);
+        std::fs::create_dir_all(to.parent().expect("parent")).expect("mkdir");
+        std::fs::copy(src.join(f), &to).expect("copy asset");
+    }
+    let a = dir.to_str().expect("utf-8");
+    let o = c.render(&["--assets", a, "--method", "fast"], &[]);
+    c.expect_error(&o, &["no FAST mask", "blueshift-tools fast"]);
+}
+
+#[test]
 fn malformed_gltf_and_camera_path() {
     let c = Case::new();
     let p = c.write("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, ");
