@@ -23,6 +23,12 @@ pub enum SceneError {
         source: gltf::Error,
     },
 
+    /// A GLB header or chunk header that is inconsistent (a length below the header size or
+    /// past the end, a wrong version or chunk type). Checked before the glTF reader, which
+    /// panics on some of these.
+    #[error("{}: not a valid glTF 2.0 file: {problem}", path.display())]
+    Glb { path: PathBuf, problem: String },
+
     #[error("{}: buffer {index} ({uri}): {problem}", path.display())]
     Buffer {
         path: PathBuf,

@@ -215,8 +215,17 @@ fn truncated_glb() {
     let dir = tmp();
     let glb = one_quad().to_glb();
     let e = load(&write(dir.path(), "cut.glb", &glb[..glb.len() - 20])).unwrap_err();
-    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
+    assert!(matches!(e, SceneError::Glb { .. }), "{e}");
+    assert!(
+        e.to_string().contains("cut.glb: not a valid glTF 2.0 file"),
+        "{e}"
+    );
     let e = load(&write(dir.path(), "junk.glb", b"glTF\x02\0\0\0garbage")).unwrap_err();
+    assert!(matches!(e, SceneError::Glb { .. }), "{e}");
+    // A JSON chunk that is not JSON still fails in the reader.
+    let mut bad_json = glb.clone();
+    bad_json[20] = b'#';
+    let e = load(&write(dir.path(), "json.glb", &bad_json)).unwrap_err();
     assert!(matches!(e, SceneError::Parse { .. }), "{e}");
 }
 

@@ -11,13 +11,15 @@
 //! [`LoadOptions::environment`] if set, else from the scene's `extras`
 //! `{"blueshift_environment": [r, g, b]}` (linear radiance), else black.
 //!
-//! Bad data: a missing file, malformed JSON/GLB, missing buffers, unreadable accessors,
-//! out-of-range vertex indices and non-finite positions are errors ([`SceneError`]).
+//! Bad data: a missing file, malformed JSON/GLB (GLB headers are checked before the reader
+//! sees them, see `glb`), missing buffers, unreadable accessors, out-of-range vertex indices
+//! and non-finite positions are errors ([`SceneError`]).
 //! Zero-area triangles are skipped and counted in one warning. Unsupported content
 //! (non-triangle modes, normal/occlusion maps, texture transforms, punctual lights, other
 //! extensions, undecodable images, ...) is skipped with one warning per kind in
 //! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
 
+mod glb;
 mod guard;
 mod material;
 mod precheck;
@@ -129,8 +131,13 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
         path: path.to_path_buf(),
         source,
     };
+    let glb = glb::check(bytes).map_err(|problem| SceneError::Glb {
+        path: path.to_path_buf(),
+        problem,
+    })?;
+    let trailing = bytes.len() - glb.len();
     let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice_without_validation(bytes).map_err(parse)?;
+        gltf::Gltf::from_slice_without_validation(glb).map_err(parse)?;
     let problems = precheck::check(document.as_json());
     if !problems.is_empty() {
         return Err(parse(gltf::Error::Validation(problems)));
@@ -143,6 +150,11 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
         warnings: Warnings::default(),
         zero_area: 0,
     };
+    if trailing > 0 {
+        ctx.warnings.warn("glb-trailing", || {
+            format!("{trailing} bytes after the GLB's declared total length are ignored")
+        });
+    }
     warn_extensions(&document, &mut ctx.warnings);
 
     let (images, image_map) = material::load_images(&document, base, &mut ctx);
