@@ -16,21 +16,26 @@
 use super::{Block, GLOBAL, Setup};
 use crate::fast::Model;
 
-/// `sum_u at[u] (|xj - c[u]| - |xi - c[u]|)`, eight lanes so that it vectorises while the
-/// summation order (hence the result) stays fixed.
-fn col_scalar(col: &[f32], at: &[f32], xi: f32, xj: f32) -> f32 {
+/// `sum_u at[u] f(c[u])` in eight lanes, so that it vectorises while the summation order
+/// (hence the result) stays fixed.
+fn lanes8(c: &[f32], at: &[f32], f: impl Fn(f32) -> f32) -> f32 {
     let mut acc = [0.0f32; 8];
-    for (c, a) in col.chunks_exact(8).zip(at.chunks_exact(8)) {
+    for (c, a) in c.chunks_exact(8).zip(at.chunks_exact(8)) {
         for ((s, &c), &a) in acc.iter_mut().zip(c).zip(a) {
-            *s += a * ((xj - c).abs() - (xi - c).abs());
+            *s += a * f(c);
         }
     }
-    let tail = col.chunks_exact(8).remainder();
+    let tail = c.chunks_exact(8).remainder();
     let mut sum: f32 = acc.iter().sum();
     for (&c, &a) in tail.iter().zip(at.chunks_exact(8).remainder()) {
-        sum += a * ((xj - c).abs() - (xi - c).abs());
+        sum += a * f(c);
     }
     sum
+}
+
+/// `sum_u at[u] (|xj - c[u]| - |xi - c[u]|)`.
+fn col_scalar(col: &[f32], at: &[f32], xi: f32, xj: f32) -> f32 {
+    lanes8(col, at, |c| (xj - c).abs() - (xi - c).abs())
 }
 
 /// The 2D-vector version of [`col_scalar`] (Euclidean distances).
@@ -58,20 +63,9 @@ fn col_vec2(cx: &[f32], cy: &[f32], at: &[f32], xi: [f32; 2], xj: [f32; 2]) -> f
     sum
 }
 
-/// `sum_u at[u] (c[u] - 1/2)` in eight lanes (see [`col_scalar`]).
+/// `sum_u at[u] (c[u] - 1/2)`.
 fn centred_dot(c: &[f32], at: &[f32]) -> f32 {
-    let mut acc = [0.0f32; 8];
-    for (c, a) in c.chunks_exact(8).zip(at.chunks_exact(8)) {
-        for ((s, &c), &a) in acc.iter_mut().zip(c).zip(a) {
-            *s += a * (c - 0.5);
-        }
-    }
-    let tail = c.chunks_exact(8).remainder();
-    let mut sum: f32 = acc.iter().sum();
-    for (&c, &a) in tail.iter().zip(at.chunks_exact(8).remainder()) {
-        sum += a * (c - 0.5);
-    }
-    sum
+    lanes8(c, at, |c| c - 0.5)
 }
 
 /// The [`Model::Pixel`] column term between pixels: `D = -2 (xj - xi) . (c[u] - 1/2)`.

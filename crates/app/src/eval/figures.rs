@@ -201,7 +201,8 @@ fn draw_lines(
     Ok(())
 }
 
-fn save(img: &RgbImage, path: &Path) -> Result<()> {
+/// Writes `img` as PNG, atomically.
+pub(super) fn save(img: &RgbImage, path: &Path) -> Result<()> {
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png)?;
     crate::output::write_atomic(path, &out.into_inner())

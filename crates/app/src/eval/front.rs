@@ -63,9 +63,7 @@ pub fn plot(points: &[FrontPoint], title: &str, path: &Path) -> Result<()> {
     let mut buf = vec![255u8; (w * h * 3) as usize];
     draw(&mut buf, (w, h), points, title).map_err(|e| anyhow::anyhow!("front plot: {e}"))?;
     let img = RgbImage::from_raw(w, h, buf).context("front plot buffer")?;
-    let mut out = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut out, image::ImageFormat::Png)?;
-    crate::output::write_atomic(path, &out.into_inner())
+    super::figures::save(&img, path)
 }
 
 fn draw(
