@@ -1,6 +1,6 @@
 // The path integrator of the trace shaders (trace/trace_body.glsl declares its resources and
 // the TRACE_* specialisation macros; needs scene_texels.glsl, bvh.glsl, brdf.glsl,
-// textures.glsl and sampling.glsl).
+// textures.glsl, sampling.glsl, and lights.glsl with TRACE_LIGHTS).
 //
 // llvmpipe executes both sides of every `if` under a lane mask; only loops exit early. So
 // per-method and per-scene choices (sampler, blue-noise mask, textures) are compile-time
@@ -112,58 +112,138 @@ float light_pdf(GpuLight l, float d, float cos_l) {
     return l.pdf / l.area * d * d / max(cos_l, 1e-8);
 }
 
-// Next-event estimation: one point on one emissive triangle, MIS-weighted.
-vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
-    if (g_light_count == 0u) return vec3(0.0);
-    // The light is chosen with u.x, which is then rescaled into its interval of the power CDF
-    // and reused for the point: direct light is a function of the one dimension pair (u.x, u.y),
-    // so a pair-wise stratified or blue sampler (Sobol, hbo19 keys) stratifies it as a whole.
-    // (u.z is left unused so the dimension layout stays the same.)
+// The light that x (in [0,1)) picks from the power CDF, and x rescaled into its interval.
+// Direct light is then a function of the one dimension pair (x, the next dimension), so a
+// pair-wise stratified or blue sampler (Sobol, hbo19 keys) stratifies it as a whole.
+uint choose_light(float x, out GpuLight l, out float rescaled) {
     uint lo = 0u, hi = g_light_count - 1u;
     if (lo < hi) {
-        do {  // first light with u.x < cdf (bottom-tested: see trace_paths)
+        do {  // first light with x < cdf (bottom-tested: see trace_paths)
             LOOP_TICK(TRACE_LOOP_LIGHT_CHOICE);
             uint mid = (lo + hi) / 2u;
-            if (u.x < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
+            if (x < scene_light(mid).cdf) hi = mid; else lo = mid + 1u;
         } while (lo < hi);
     }
-    GpuLight l = scene_light(lo);
+    l = scene_light(lo);
     float c0 = lo > 0u ? scene_light(max(lo, 1u) - 1u).cdf : 0.0;  // (both sides run)
-    float ux = clamp((u.x - c0) / max(l.cdf - c0, 1e-30), 0.0, 1.0);
+    rescaled = clamp((x - c0) / max(l.cdf - c0, 1e-30), 0.0, 1.0);
+    return lo;
+}
+
+// A point q on triangle light l from (ux, uy) as seen from p: direction wi, distance d,
+// |cosine| at the light and the radiance it emits towards p.
+void triangle_light_point(GpuLight l, float ux, float uy, vec3 p, out vec3 q, out vec3 wi,
+                          out float d, out float cos_l, out vec3 le) {
     SceneTriangle tri = scene_triangle(l.triangle);
     SceneShading sh = scene_shading_at(l.triangle, TRACE_TEXTURES != 0);
     float su = sqrt(ux);
-    float b1 = 1.0 - su, b2 = u.y * su;
-    vec3 q = tri.tri.v0 + b1 * tri.tri.e1 + b2 * tri.tri.e2;
-    vec3 to = q - s.p;
-    float d = length(to);
-    if (d <= 0.0) return vec3(0.0);
-    vec3 wi = to / d;
+    float b1 = 1.0 - su, b2 = uy * su;
+    q = tri.tri.v0 + b1 * tri.tri.e1 + b2 * tri.tri.e2;
+    vec3 to = q - p;
+    d = length(to);
+    wi = to / d;
     vec3 nl = normalize(cross(tri.tri.e1, tri.tri.e2));
     if (dot(nl, sh.n0) < 0.0) nl = -nl;
-    float cos_l = dot(nl, -wi);
+    cos_l = dot(nl, -wi);
     bool front = cos_l > 0.0;
 #if TRACE_TEXTURES
     vec2 uv = (1.0 - b1 - b2) * sh.uv0 + b1 * sh.uv1 + b2 * sh.uv2;
 #else
     vec2 uv = vec2(0.0);
 #endif
-    vec3 le = emission_at(scene_material(tri.material), uv, front);
+    le = emission_at(scene_material(tri.material), uv, front);
     cos_l = abs(cos_l);
-    if (dot(s.n, wi) <= 0.0 || dot(s.ng, wi) <= 0.0 || all(equal(le, vec3(0.0)))) return vec3(0.0);
-    // The shadow ray ends just short of q itself. (Running it along wi for d * (1 - 1e-4) from
-    // the offset origin carried its end through the light whenever the offset had a
-    // component towards the light: floors and box tops under the Cornell box's light were
-    // shadowed by the light itself, about half their direct light lost.)
+}
+
+// The shadow ray from s towards q (the ray ends just short of q itself: running it along wi
+// for d * (1 - 1e-4) from the offset origin carried its end through the light whenever the
+// offset had a component towards the light, and floors under the Cornell box's light lost
+// about half their direct light), or along wi to infinity.
+Ray shadow_ray(Surface s, vec3 q, vec3 wi, bool infinite) {
     vec3 o = offset_origin(s.p, s.ng);
     vec3 oq = q - o;
     float dq = length(oq);
-    Ray shadow = Ray(o, 0.0, oq / dq, dq * (1.0 - 1e-4));
-    if (bvh_occluded(shadow)) return vec3(0.0);
+    return infinite ? Ray(o, 0.0, wi, 1e30) : Ray(o, 0.0, oq / dq, dq * (1.0 - 1e-4));
+}
+
+#if !TRACE_LIGHTS
+// Next-event estimation: one point on one emissive triangle, MIS-weighted. (u.z is left
+// unused so the dimension layout stays the same.)
+vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
+    if (g_light_count == 0u) return vec3(0.0);
+    GpuLight l;
+    float ux;
+    choose_light(u.x, l, ux);
+    vec3 q, wi, le;
+    float d, cos_l;
+    triangle_light_point(l, ux, u.y, s.p, q, wi, d, cos_l, le);
+    if (d <= 0.0) return vec3(0.0);
+    if (dot(s.n, wi) <= 0.0 || dot(s.ng, wi) <= 0.0 || all(equal(le, vec3(0.0)))) return vec3(0.0);
+    if (bvh_occluded(shadow_ray(s, q, wi, false))) return vec3(0.0);
     float pl = light_pdf(l, d, cos_l);
     float pb = brdf_pdf(m, s.n, wo, wi);
     return le * brdf_eval(m, s.n, wo, wi) * dot(s.n, wi) / pl * power_heuristic(pl, pb);
 }
+
+vec3 environment_seen(vec3 dir, float prev_pdf) { return g_environment; }
+#else
+// Next-event estimation towards one light of any kind: a point on an emissive triangle, a
+// punctual light, or a direction drawn from the environment map; MIS-weighted against BRDF
+// sampling where BRDF sampling can find the light too (triangles, the map). Every lane runs
+// every kind (llvmpipe runs both sides of a branch); the map's searches skip other lanes.
+vec3 sample_light(Surface s, BrdfInput m, vec3 wo, vec3 u) {
+    if (g_light_count == 0u) return vec3(0.0);
+    GpuLight l;
+    float ux;
+    choose_light(u.x, l, ux);
+    bool tri = (l.triangle & LIGHT_PARAMS_BIT) == 0u;
+    GpuLight lt = l;
+    lt.triangle = tri ? l.triangle : 0u;
+    vec3 q, wi, le;
+    float d, cos_l;
+    triangle_light_point(lt, ux, u.y, s.p, q, wi, d, cos_l, le);
+    float pl = light_pdf(l, d, cos_l);  // solid angle, selection included; 0: a delta light
+    bool infinite = false;
+    LightParams lp = light_params(tri ? 0u : l.triangle & ~LIGHT_PARAMS_BIT);
+    bool env = !tri && lp.kind == LIGHT_ENVIRONMENT;
+    vec3 ewi;
+    float epdf;
+    env_sample(vec2(ux, u.y), env, ewi, epdf);
+    vec3 pwi, pe;
+    float pd;
+    punctual_incident(lp, s.p, pwi, pd, pe);
+    if (env) {
+        wi = ewi;
+        le = env_radiance(env_texel_of(ewi));
+        pl = l.pdf * epdf;
+        infinite = true;
+        d = 1.0;
+    } else if (!tri) {
+        wi = pwi;
+        le = pe;
+        pl = 0.0;
+        q = lp.position;
+        infinite = pd >= 1e30;
+        d = pd;
+    }
+    if (!(d > 0.0) || (env && !(pl > 0.0))) return vec3(0.0);
+    if (dot(s.n, wi) <= 0.0 || dot(s.ng, wi) <= 0.0 || all(equal(le, vec3(0.0)))) return vec3(0.0);
+    if (bvh_occluded(shadow_ray(s, q, wi, infinite))) return vec3(0.0);
+    float pb = brdf_pdf(m, s.n, wo, wi);
+    float w = pl > 0.0 ? power_heuristic(pl, pb) : 1.0;
+    return le * brdf_eval(m, s.n, wo, wi) * dot(s.n, wi) / (pl > 0.0 ? pl : l.pdf) * w;
+}
+
+// What a ray that leaves the scene along dir brings back: the map (MIS-weighted against
+// sample_light when the map is a light and the ray came from BRDF sampling) or the constant.
+vec3 environment_seen(vec3 dir, float prev_pdf) {
+    uvec2 t = env_texel_of(dir);
+    vec3 le = env_radiance(t);
+    float w = g_env_select > 0.0 && prev_pdf > 0.0
+        ? power_heuristic(prev_pdf, g_env_select * env_density(env_probability(t), dir)) : 1.0;
+    return g_env_size.x == 0u ? g_environment : le * w;
+}
+#endif
 
 // The state of one path between vertices.
 struct PathState {
@@ -194,7 +274,7 @@ PathState path_start(uvec2 px, uint seed, uint index, uint s) {
 bool path_step(uvec2 px, uint seed, uint index, uint s, inout PathState st) {
     Hit hit;
     if (!bvh_closest_hit(st.ray, hit)) {
-        st.l += st.throughput * g_environment;
+        st.l += st.throughput * environment_seen(st.ray.dir, st.prev_pdf);
         return true;
     }
     Surface srf = surface_at(st.ray, hit);

@@ -1,9 +1,10 @@
 // Path-tracing pass: one invocation per pixel running TraceParams::sample_count paths per
 // dispatch (the host splits a frame's samples into dispatches sized against llvmpipe's loop
-// limit, counted below; see passes.rs), software BVH traversal over the scene images, glTF BRDF, next-event
-// estimation on emissive triangles with MIS (power heuristic) against BRDF sampling, constant
-// environment, Russian roulette. All randomness comes from the pixel's seed in the seed buffer
-// (see sample_dim), so moving seeds moves whole estimates.
+// limit, counted below; see passes.rs), software BVH traversal over the scene images, glTF
+// BRDF, next-event estimation with MIS (power heuristic) against BRDF sampling on emissive
+// triangles (and with TRACE_LIGHTS on punctual lights and the environment map), a constant
+// environment or a map, Russian roulette. All randomness comes from the pixel's seed in the
+// seed buffer (see sample_dim), so moving seeds moves whole estimates.
 // Output: the raw per-frame estimate (rgb, Rec.709 luminance) that the sorting pass ranks.
 //
 // Included by trace/trace.comp (everything chosen at run time) and compiled once per
@@ -15,6 +16,8 @@
 //   TRACE_TEXTURES      1: material textures and uvs; 0: texture indices ignored (no textures)
 //   TRACE_LAMBERT       1: every material the triangles use has metallic = specular = 0, so
 //                       the BRDF is Lambert alone (BRDF_LAMBERT, brdf.glsl); 0: full glTF
+//   TRACE_LIGHTS        1: punctual lights and environment maps (lights.glsl); 0: emissive
+//                       triangles and a constant environment only (optional, default 0)
 //   TRACE_HBO19         1: samples from hbo19_lookup_bits with the key table at binding 12
 //                       (optional, default 0: sample_bits(TRACE_SAMPLER_KIND, ...))
 //   TRACE_LOOP_STATS    1: count every loop's iterations per batch and per lane
@@ -98,6 +101,12 @@ uint g_batch_iterations[TRACE_LOOP_COUNT];
 #define BRDF_LAMBERT TRACE_LAMBERT
 #include "brdf.glsl"
 #include "textures.glsl"
+#ifndef TRACE_LIGHTS
+#define TRACE_LIGHTS 0
+#endif
+#if TRACE_LIGHTS
+#include "lights.glsl"
+#endif
 #include "path.glsl"
 
 #if TRACE_LOOP_STATS
@@ -124,6 +133,9 @@ void main() {
 #endif
     g_light_count = scene.light_count;
     g_environment = scene.environment;
+#if TRACE_LIGHTS
+    lights_init(scene);
+#endif
     g_albedo0 = vec3(1.0);
     // Keeps every binding in every variant, so all variants share one binding table.
     int keep = imageSize(scene_textures).x + imageSize(scene_texels).x + mask.length() +

@@ -63,6 +63,9 @@ fn soup(n: u32) -> Scene {
         images: vec![],
         camera: None,
         environment: Vec3::ZERO,
+        environment_map: None,
+        environment_sampling: true,
+        lights: vec![],
         warnings: vec![],
     }
 }

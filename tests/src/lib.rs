@@ -27,6 +27,10 @@ mod headers;
 #[cfg(test)]
 mod history;
 #[cfg(test)]
+mod lights;
+#[cfg(test)]
+mod lights_twin;
+#[cfg(test)]
 mod loop_stats;
 #[cfg(test)]
 mod motion;

@@ -10,7 +10,7 @@ use blueshift_scene::{Camera, Material, Scene, Triangle};
 use glam::{Vec2, Vec3};
 
 /// A UV sphere of radius 1 at the origin with smooth normals.
-fn sphere(material: u32, rings: u32, segments: u32) -> Vec<Triangle> {
+pub(crate) fn sphere(material: u32, rings: u32, segments: u32) -> Vec<Triangle> {
     let p = |i: u32, j: u32| {
         let (t, f) = (
             std::f32::consts::PI * i as f32 / rings as f32,
@@ -37,7 +37,7 @@ fn sphere(material: u32, rings: u32, segments: u32) -> Vec<Triangle> {
     v
 }
 
-fn scene(
+pub(crate) fn scene(
     triangles: Vec<Triangle>,
     materials: Vec<Material>,
     environment: Vec3,
@@ -51,15 +51,18 @@ fn scene(
         images: vec![],
         camera: Some(camera),
         environment,
+        environment_map: None,
+        environment_sampling: true,
+        lights: vec![],
         warnings: vec![],
     }
 }
 
-fn assets() -> MethodAssets {
+pub(crate) fn assets() -> MethodAssets {
     MethodAssets::load(&default_assets_dir()).unwrap()
 }
 
-fn mean_center(px: &[[f32; 4]], w: usize, r: usize) -> Vec3 {
+pub(crate) fn mean_center(px: &[[f32; 4]], w: usize, r: usize) -> Vec3 {
     let c = w / 2;
     let mut s = Vec3::ZERO;
     for y in c - r..c + r {

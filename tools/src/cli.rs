@@ -44,6 +44,28 @@ pub enum Command {
     Manifest(ManifestArgs),
     /// Write the bundled glTF scenes (cornell-box, textured, edges).
     Scene(SceneArgs),
+    /// Procedural sky as an equirectangular Radiance `.hdr` (the bundled environment map).
+    Sky(SkyArgs),
+}
+
+/// `sky` flags.
+#[derive(Debug, clap::Args)]
+pub struct SkyArgs {
+    /// Map width in texels (height is half of it).
+    #[arg(long, default_value_t = 256)]
+    pub width: u32,
+    /// Sun elevation above the horizon, degrees.
+    #[arg(long, default_value_t = 35.0, allow_negative_numbers = true)]
+    pub sun_elevation: f32,
+    /// Sun azimuth from -Z towards +X, degrees.
+    #[arg(long, default_value_t = 150.0, allow_negative_numbers = true)]
+    pub sun_azimuth: f32,
+    /// Radiance of the sun disc (1.5 degrees in radius).
+    #[arg(long, default_value_t = 1500.0)]
+    pub sun_radiance: f32,
+    /// Output `.hdr`.
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 /// `scene` flags.
@@ -370,6 +392,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Assets(a) => commands::assets::assets(&a),
         Command::Manifest(a) => commands::assets::manifest(&a),
         Command::Scene(a) => scene(&a),
+        Command::Sky(a) => commands::sky::sky(&a),
     }
 }
 

@@ -37,6 +37,7 @@ fn manifest_lists_every_required_asset() {
         "retarget/bn128_s97_73_r6.bin",
         "keys/hbo19_t128_spp1.bin",
         "keys/hbo19_t128_spp16.bin",
+        "environments/sky.hdr",
     ] {
         assert!(paths.iter().any(|q| q == p), "{p} missing from MANIFEST");
     }
@@ -45,11 +46,16 @@ fn manifest_lists_every_required_asset() {
 #[test]
 fn small_assets_regenerate_bit_exactly() {
     // Mask generation and the exact retarget solver must reproduce the committed 32x32
-    // outputs byte for byte (the table is computed from the regenerated mask).
+    // outputs byte for byte (the table is computed from the regenerated mask), and the sky
+    // generator the committed environment map.
     let text = std::fs::read_to_string(assets().join("MANIFEST")).unwrap();
     let entries = manifest::parse(&text).unwrap();
     let dir = tempfile::tempdir().unwrap();
-    for rel in ["masks/bn32.r16", "retarget/bn32_s24_18_r6.bin"] {
+    for rel in [
+        "masks/bn32.r16",
+        "retarget/bn32_s24_18_r6.bin",
+        "environments/sky.hdr",
+    ] {
         regenerate(rel, dir.path()).unwrap();
         let want = &entries.iter().find(|e| e.path == rel).unwrap().sha256;
         let got = manifest::sha256_file(&dir.path().join(rel)).unwrap();

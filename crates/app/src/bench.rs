@@ -26,7 +26,7 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
         bail!("--frames {} is outside 1..=1000", a.frames);
     }
     let cfg = config(&a.scene, &a.method)?;
-    let scene = load_scene(&a.scene.scene)?;
+    let scene = load_scene(&a.scene.scene, &a.scene.lights)?;
     let assets = load_assets(&a.scene)?;
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;

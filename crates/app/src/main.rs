@@ -3,6 +3,7 @@ mod bench;
 mod eval;
 mod fail;
 mod info;
+mod lighting;
 mod output;
 mod render;
 mod soak;

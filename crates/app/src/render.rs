@@ -1,5 +1,6 @@
 //! `blueshift render`: headless frames of a scene to PNG (tonemapped) and EXR (linear raw).
 use crate::GpuOpts;
+use crate::lighting::LightArgs;
 use crate::output::{exr_rgb32f, png_rgba8, prepare_dir, write_atomic};
 use anyhow::{Context, Result, bail};
 use blueshift_render::{
@@ -38,6 +39,8 @@ pub struct SceneArgs {
     /// Directory with masks and retarget tables.
     #[arg(long)]
     pub assets: Option<PathBuf>,
+    #[command(flatten)]
+    pub lights: LightArgs,
 }
 
 #[derive(clap::Args, Debug)]
@@ -76,21 +79,24 @@ pub fn scene_path(spec: &str) -> PathBuf {
     }
 }
 
-pub fn load_scene(spec: &str) -> Result<Scene> {
+/// Loads a scene lit as `lights` says, printing its warnings (one line each).
+pub fn load_scene(spec: &str, lights: &LightArgs) -> Result<Scene> {
     let path = scene_path(spec);
+    let (environment, map_warning) = lights.source()?;
     let opts = blueshift_scene::LoadOptions {
+        environment,
         quiet: true,
-        ..Default::default()
     };
     let looks_like_preset = !spec.contains(['/', '.']);
-    let scene = match Scene::load_with(&path, &opts) {
+    let mut scene = match Scene::load_with(&path, &opts) {
         Err(blueshift_scene::SceneError::NotFound { .. }) if looks_like_preset => bail!(
             "scene '{spec}' is neither a file nor a preset (presets: cornell-box, textured, edges)"
         ),
         // The scene error names the file.
         r => r?,
     };
-    for w in &scene.warnings {
+    let dark = lights.apply(&mut scene)?;
+    for w in scene.warnings.iter().chain(&map_warning).chain(&dark) {
         eprintln!("warning: {w}");
     }
     Ok(scene)
@@ -138,7 +144,7 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     let path = CameraPath::parse(&args.camera_path).map_err(anyhow::Error::msg)?;
     let (view, base_offset) = path.view_window(args.frames, cfg.width, cfg.height);
     cfg.view_size = Some(view);
-    let scene = load_scene(&args.scene.scene)?;
+    let scene = load_scene(&args.scene.scene, &args.scene.lights)?;
     let assets = load_assets(&args.scene)?;
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;

@@ -65,7 +65,7 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
             cfg.method
         );
     }
-    let scene = load_scene(&a.scene.scene)?;
+    let scene = load_scene(&a.scene.scene, &a.scene.lights)?;
     let assets = load_assets(&a.scene)?;
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;

@@ -26,13 +26,15 @@ pub struct TraceVariant {
     pub textures: bool,
     /// The Lambert-only BRDF (every material has metallic = specular = 0).
     pub lambert: bool,
+    /// Punctual lights and environment maps (the scene has some).
+    pub lights: bool,
     /// Count loop iterations (`--loop-stats`): every other choice is made at run time then, so
     /// only the sampler's key table (HBO+19 or not) selects among these.
     pub loop_stats: bool,
 }
 
 impl TraceVariant {
-    /// The shader name: `trace/trace_<sampler>[_mask][_tex][_lambert]`, or
+    /// The shader name: `trace/trace_<sampler>[_mask][_tex][_lambert][_lights]`, or
     /// `trace/trace_loop_stats[_hbo19]`.
     pub fn shader(self) -> String {
         let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
@@ -41,11 +43,12 @@ impl TraceVariant {
             return format!("trace/trace_loop_stats{}", flag(hbo19, "_hbo19"));
         }
         format!(
-            "trace/trace_{}{}{}{}",
+            "trace/trace_{}{}{}{}{}",
             self.sampler.name(),
             flag(self.mask, "_mask"),
             flag(self.textures, "_tex"),
             flag(self.lambert, "_lambert"),
+            flag(self.lights, "_lights"),
         )
     }
 
@@ -62,6 +65,7 @@ impl TraceVariant {
                 ("TRACE_SAMPLER_KIND", kind),
                 ("TRACE_MASK", bit(true)),
                 ("TRACE_TEXTURES", bit(true)),
+                ("TRACE_LIGHTS", bit(true)),
                 ("TRACE_LOOP_STATS", bit(true)),
             ]
         } else {
@@ -70,6 +74,7 @@ impl TraceVariant {
                 ("TRACE_MASK", bit(self.mask)),
                 ("TRACE_TEXTURES", bit(self.textures)),
                 ("TRACE_LAMBERT", bit(self.lambert)),
+                ("TRACE_LIGHTS", bit(self.lights)),
             ]
         };
         defines.push(("TRACE_HBO19", bit(hbo19)));
@@ -84,12 +89,13 @@ impl TraceVariant {
     pub fn all() -> Vec<TraceVariant> {
         let mut out = Vec::new();
         for sampler in Sampler::ALL {
-            for bits in 0..16u32 {
+            for bits in 0..32u32 {
                 let v = TraceVariant {
                     sampler,
                     mask: bits & 1 != 0,
                     textures: bits & 2 != 0,
                     lambert: bits & 4 != 0,
+                    lights: bits & 16 != 0,
                     loop_stats: bits & 8 != 0,
                 }
                 .canonical();
@@ -116,6 +122,7 @@ impl TraceVariant {
             mask: true,
             textures: true,
             lambert: false,
+            lights: true,
             loop_stats: true,
         }
     }

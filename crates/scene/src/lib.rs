@@ -21,16 +21,21 @@
 
 pub mod bvh;
 mod camera;
+mod environment;
 mod error;
 mod geometry;
 pub mod gpu;
 mod intersect;
+mod lights;
 mod load;
 pub mod presets;
 mod scene;
 
 pub use bvh::Bvh;
 pub use camera::{Camera, CameraBasis};
+pub use environment::{
+    EnvMap, EnvMapError, EnvTables, MAX_ENV_SIDE, env_density, env_direction, env_texel_of, env_uv,
+};
 pub use error::SceneError;
 pub use geometry::Aabb;
 pub use gpu::{
@@ -41,8 +46,9 @@ pub use intersect::{
     TraversalCounts, closest_hit, closest_hit_brute_force, closest_hit_counted, intersect_triangle,
     occluded,
 };
-pub use load::LoadOptions;
-pub use scene::{Image, Material, Scene, Texture, Triangle, Wrap};
+pub use lights::{LightKind, PunctualLight};
+pub use load::{EnvironmentSource, LoadOptions};
+pub use scene::{DEFAULT_ENVIRONMENT, Image, Material, Scene, Texture, Triangle, Wrap};
 
 /// Result alias for this crate.
 pub type Result<T, E = SceneError> = std::result::Result<T, E>;

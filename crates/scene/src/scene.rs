@@ -1,9 +1,10 @@
 //! The CPU scene: world-space triangles, materials, textures, camera, environment.
 
 use crate::load::{self, LoadOptions};
-use crate::{Aabb, Camera, Result, SceneError, gpu};
+use crate::{Aabb, Camera, EnvMap, PunctualLight, Result, SceneError, gpu};
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// One world-space triangle with its shading attributes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -85,6 +86,9 @@ pub struct Image {
     pub rgba8: Vec<u8>,
 }
 
+/// The radiance of the environment that lights a scene with no light of its own.
+pub const DEFAULT_ENVIRONMENT: Vec3 = Vec3::ONE;
+
 /// A loaded scene. Build its GPU form with [`crate::SceneGpu::build`].
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -96,8 +100,15 @@ pub struct Scene {
     pub images: Vec<Image>,
     /// The first perspective camera of the scene's node tree, if any.
     pub camera: Option<Camera>,
-    /// Constant environment radiance (linear RGB) seen by rays that leave the scene.
+    /// Constant environment radiance (linear RGB) seen by rays that leave the scene, unless
+    /// `environment_map` is set.
     pub environment: Vec3,
+    /// An equirectangular map seen by rays that leave the scene (replaces `environment`).
+    pub environment_map: Option<Arc<EnvMap>>,
+    /// Whether next-event estimation samples the map (else only rays that leave find it).
+    pub environment_sampling: bool,
+    /// `KHR_lights_punctual` lights.
+    pub lights: Vec<PunctualLight>,
     /// One line per kind of unsupported or skipped content (also printed once to stderr).
     pub warnings: Vec<String>,
 }
@@ -135,6 +146,52 @@ impl Scene {
     pub fn camera_or_default(&self) -> Camera {
         self.camera
             .unwrap_or_else(|| Camera::framing(&self.bounds()))
+    }
+
+    /// Whether anything emits: an emissive triangle, a punctual light, or the environment.
+    pub fn has_light(&self) -> bool {
+        let emissive = |m: u32| {
+            self.materials
+                .get(m as usize)
+                .is_some_and(|m| m.emissive.max_element() > 0.0)
+        };
+        self.environment.max_element() > 0.0
+            || self
+                .environment_map
+                .as_ref()
+                .is_some_and(|m| m.texels.iter().any(|t| t.max_element() > 0.0))
+            || self.lights.iter().any(|l| l.intensity.max_element() > 0.0)
+            || self.triangles.iter().any(|t| emissive(t.material))
+    }
+
+    /// Multiplies the environment (constant or map) by `k`.
+    pub fn scale_environment(&mut self, k: f32) {
+        self.environment *= k;
+        if let Some(m) = &mut self.environment_map {
+            Arc::make_mut(m).scale(k);
+        }
+    }
+
+    /// Sets the map's rotation about +Y (radians; no effect on a constant environment).
+    pub fn rotate_environment(&mut self, radians: f32) {
+        if let Some(m) = &mut self.environment_map {
+            Arc::make_mut(m).rotation = radians;
+        }
+    }
+
+    /// Lights a scene that has no light at all with [`DEFAULT_ENVIRONMENT`], and returns the
+    /// one warning to print (a black frame with no word about why helps nobody).
+    pub fn light_if_dark(&mut self) -> Option<String> {
+        if self.has_light() {
+            return None;
+        }
+        self.environment = DEFAULT_ENVIRONMENT;
+        Some(format!(
+            "{}: nothing emits light (no emissive material, no KHR_lights_punctual light, no \
+             environment): lit by a uniform white environment of radiance 1; choose lighting \
+             with --environment R,G,B or --environment FILE.hdr|.exr",
+            self.source.display()
+        ))
     }
 
     /// Checks that every GPU buffer of this scene fits `maxStorageBufferRange` before building
@@ -175,7 +232,14 @@ impl Scene {
                 self.textures.len() as u64 * size_of::<gpu::GpuTexture>() as u64,
             ),
             ("texel", texels * 4),
-            ("light", emissive * size_of::<gpu::GpuLight>() as u64),
+            (
+                "light",
+                (emissive + self.lights.len() as u64 + 1) * size_of::<gpu::GpuLight>() as u64
+                    + self
+                        .environment_map
+                        .as_ref()
+                        .map_or(0, |m| (m.texels.len() as u64 + m.height as u64) * 16),
+            ),
         ];
         check_sizes(&sizes, max_storage_buffer_range)
     }

@@ -67,6 +67,9 @@ pub fn soup_scene(tris: &[[Vec3; 3]]) -> Scene {
         images: vec![],
         camera: None,
         environment: Vec3::ZERO,
+        environment_map: None,
+        environment_sampling: true,
+        lights: vec![],
         warnings: vec![],
     }
 }

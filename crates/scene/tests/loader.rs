@@ -197,7 +197,7 @@ fn camera_environment_and_override() {
     assert_eq!(cam.yfov, 0.5);
     assert!(close(scene.environment, Vec3::new(0.1, 0.2, 0.3)));
     let opts = LoadOptions {
-        environment: Some(Vec3::ONE),
+        environment: Some(blueshift_scene::EnvironmentSource::Constant(Vec3::ONE)),
         quiet: true,
     };
     assert_eq!(Scene::load_with(&p, &opts).unwrap().environment, Vec3::ONE);
@@ -358,4 +358,80 @@ fn specular_extension_factors_are_read() {
     );
     assert_eq!(m[1].base_color_texture, None);
     assert!(!w.iter().any(|w| w.contains("extension")), "{w:?}");
+}
+
+/// `KHR_lights_punctual`: kinds, units (color x intensity), node transforms (position, -Z as
+/// the direction), cones; a negative intensity or bad cones are
+/// skipped with a warning naming the light.
+#[test]
+fn punctual_lights_are_read_in_world_space() {
+    let dir = tmp();
+    let mut b = one_quad();
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    // Rotated -90 degrees about x: local -Z points down (-Y).
+    let down = json!([-s, 0.0, 0.0, s]);
+    for (light, translation) in [
+        (0, [1.0, 2.0, 3.0]),
+        (1, [0.0, 4.0, 0.0]),
+        (2, [9.0, 9.0, 9.0]),
+    ] {
+        let n = b.add_node(json!({ "translation": translation, "rotation": down,
+            "extensions": { "KHR_lights_punctual": { "light": light } } }));
+        b.add_root(n);
+    }
+    for light in [3, 4] {
+        let n = b.add_node(json!({ "extensions": { "KHR_lights_punctual": { "light": light } } }));
+        b.add_root(n);
+    }
+    let mut doc: Value = serde_json::from_slice(&b.to_gltf_embedded()).unwrap();
+    doc["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    doc["extensions"] = json!({ "KHR_lights_punctual": { "lights": [
+        { "type": "point", "color": [1.0, 0.5, 0.25], "intensity": 8.0, "range": 10.0 },
+        { "type": "spot", "intensity": 2.0, "spot": { "innerConeAngle": 0.1, "outerConeAngle": 0.4 } },
+        { "type": "directional", "intensity": 3.0 },
+        { "type": "point", "intensity": -1.0 },
+        { "type": "spot", "spot": { "innerConeAngle": 0.5, "outerConeAngle": 0.2 } },
+    ] } });
+    let p = write_json(dir.path(), "lights.gltf", &doc);
+    let scene = load(&p).unwrap();
+    use blueshift_scene::LightKind;
+    let l = &scene.lights;
+    assert_eq!(l.len(), 3, "{l:?}");
+    assert_eq!(l[0].kind, LightKind::Point);
+    assert!(close(l[0].position, Vec3::new(1.0, 2.0, 3.0)));
+    assert!(close(l[0].intensity, Vec3::new(8.0, 4.0, 2.0)));
+    assert_eq!(
+        l[1].kind,
+        LightKind::Spot {
+            inner: 0.1,
+            outer: 0.4
+        }
+    );
+    assert!(close(l[1].direction, Vec3::NEG_Y));
+    assert!(close(l[1].intensity, Vec3::splat(2.0)));
+    assert_eq!(l[2].kind, LightKind::Directional);
+    assert!(close(l[2].direction, Vec3::NEG_Y));
+    let w = scene.warnings.join("\n");
+    assert!(w.contains("light 3 has intensity -1"), "{w}");
+    assert!(w.contains("light 4 has cone angles"), "{w}");
+    assert!(w.contains("`range` is ignored"), "{w}");
+    assert!(!w.contains("extension KHR_lights_punctual"), "{w}");
+    assert!(scene.has_light());
+}
+
+/// A scene with nothing that emits is lit by the default environment, with one warning that
+/// names --environment; a lit scene is left alone.
+#[test]
+fn dark_scenes_get_the_default_environment_and_one_warning() {
+    let dir = tmp();
+    let mut b = GltfBuilder::new();
+    let mesh = b.add_mesh("quad", &quad(true), None);
+    let n = b.add_node(json!({ "mesh": mesh }));
+    b.add_root(n);
+    let mut scene = load(&write(dir.path(), "dark.gltf", &b.to_gltf_embedded())).unwrap();
+    assert!(!scene.has_light());
+    let w = scene.light_if_dark().expect("a warning");
+    assert!(w.contains("--environment"), "{w}");
+    assert_eq!(scene.environment, blueshift_scene::DEFAULT_ENVIRONMENT);
+    assert!(scene.light_if_dark().is_none());
 }

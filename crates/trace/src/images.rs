@@ -20,6 +20,9 @@ pub struct SceneImages {
     /// Whether every material a triangle uses has metallic = specular = 0 (selects the
     /// Lambert-only trace variant: the glTF BRDF is then exactly Lambert).
     pub lambert: bool,
+    /// Whether the scene has punctual lights or an environment map (selects the trace
+    /// variant that samples them).
+    pub punctual_or_map: bool,
 }
 
 impl std::fmt::Debug for SceneImages {
@@ -28,6 +31,7 @@ impl std::fmt::Debug for SceneImages {
             .field("nodes", &(self.nodes.width, self.nodes.height))
             .field("textured", &self.textured)
             .field("lambert", &self.lambert)
+            .field("punctual_or_map", &self.punctual_or_map)
             .finish_non_exhaustive()
     }
 }
@@ -79,6 +83,7 @@ impl SceneImages {
                 let m = scene.materials.get(t.material as usize);
                 m.is_some_and(|m| m.metallic == 0.0 && m.specular == 0.0)
             }),
+            punctual_or_map: !scene.light_params.is_empty() || scene.environment.is_some(),
         };
         rec.submit_and_wait()?;
         drop(staging);

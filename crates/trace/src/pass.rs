@@ -68,6 +68,7 @@ pub fn trace_variant(
         mask: p.mask_mode != MASK_MODE_NONE,
         textures: scene.textured,
         lambert: scene.lambert,
+        lights: scene.punctual_or_map,
         loop_stats,
     };
     Ok(v.canonical())

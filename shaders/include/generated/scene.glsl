@@ -12,6 +12,11 @@ const uint TEXTURE_WRAP_REPEAT = 0u;
 const uint TEXTURE_WRAP_CLAMP = 1u;
 const uint TEXTURE_WRAP_MIRROR = 2u;
 const uint TEXTURE_FILTER_NEAREST = 16u;
+const uint LIGHT_PARAMS_BIT = 2147483648u;
+const uint LIGHT_POINT = 1u;
+const uint LIGHT_SPOT = 2u;
+const uint LIGHT_DIRECTIONAL = 3u;
+const uint LIGHT_ENVIRONMENT = 4u;
 const uint SCENE_TEXELS_WIDTH_LOG2 = 12u;
 const uint NODE_TEXELS = 2u;
 const uint NODE_COUNT_BITS = 3u;
@@ -20,6 +25,7 @@ const uint SHADING_TEXELS = 4u;
 const uint MATERIAL_TEXELS = 4u;
 const uint LIGHT_TEXELS = 1u;
 const uint TEXTURE_TEXELS = 1u;
+const uint LIGHT_PARAMS_TEXELS = 3u;
 const uint ATLAS_WORDS_PER_TEXEL = 4u;
 struct BvhNode {
     vec3 aabb_min; // offset 0, size 12
@@ -79,6 +85,16 @@ struct GpuLight {
 };
 const uint GPU_LIGHT_SIZE = 16;
 
+struct LightParams {
+    vec3 position; // offset 0, size 12
+    uint kind; // offset 12, size 4
+    vec3 direction; // offset 16, size 12
+    float cos_inner; // offset 28, size 4
+    vec3 intensity; // offset 32, size 12
+    float cos_outer; // offset 44, size 4
+};
+const uint LIGHT_PARAMS_SIZE = 48;
+
 struct SceneInfo {
     uint triangle_count; // offset 0, size 4
     uint node_count; // offset 4, size 4
@@ -90,8 +106,14 @@ struct SceneInfo {
     vec3 environment; // offset 28, size 12
     vec3 bounds_min; // offset 40, size 12
     vec3 bounds_max; // offset 52, size 12
+    uint light_params_offset; // offset 64, size 4
+    uint env_offset; // offset 68, size 4
+    uint env_width; // offset 72, size 4
+    uint env_height; // offset 76, size 4
+    int env_light; // offset 80, size 4
+    vec2 env_rotation; // offset 84, size 8
 };
-const uint SCENE_INFO_SIZE = 64;
+const uint SCENE_INFO_SIZE = 92;
 
 struct Ray {
     vec3 origin; // offset 0, size 12

@@ -112,6 +112,12 @@ pub fn jobs(root: &str) -> Vec<Job> {
             ],
             root,
         ),
+        job(
+            "sky --width 256 --out {root}/environments/sky.hdr",
+            0,
+            &["environments/sky.hdr"],
+            root,
+        ),
     ]
 }
 

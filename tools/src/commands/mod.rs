@@ -7,6 +7,7 @@ pub(crate) mod figures;
 pub mod keys;
 pub(crate) mod masks;
 pub(crate) mod retarget;
+pub mod sky;
 pub(crate) mod spectrum;
 
 use std::path::Path;

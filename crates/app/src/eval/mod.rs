@@ -28,6 +28,8 @@ pub struct EvalArgs {
     /// glTF/GLB file or bundled preset (cornell-box, textured, edges).
     #[arg(long, default_value = "cornell-box")]
     pub scene: String,
+    #[command(flatten)]
+    pub lights: crate::lighting::LightArgs,
     /// Comma-separated methods; `white` is always added (ratios are against it).
     #[arg(
         long,
@@ -166,7 +168,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     if !(1..=64).contains(&args.sequences) {
         bail!("--sequences {} is outside 1..=64", args.sequences);
     }
-    let scene = crate::render::load_scene(&args.scene)?;
+    let scene = crate::render::load_scene(&args.scene, &args.lights)?;
     let path = scene_path(&args.scene);
     let scene_bytes =
         std::fs::read(&path).with_context(|| format!("reading scene {}", path.display()))?;
@@ -180,6 +182,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
         sampler: None,
         assets: args.assets.clone(),
         initial_seeds: args.initial_seeds.clone(),
+        lights: args.lights.clone(),
     })?;
     let seed_map: SeedMap = args
         .initial_seeds

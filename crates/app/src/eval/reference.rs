@@ -81,6 +81,16 @@ pub struct RefJob<'a> {
 fn key(job: &RefJob, what: &str) -> String {
     let mut h = Sha256::new();
     h.update(job.scene_bytes);
+    // The lighting the flags add (environment, intensity, rotation, the default light).
+    let s = job.scene;
+    h.update(format!(
+        "{:?}|{:?}|{}",
+        s.environment, s.lights, s.environment_sampling
+    ));
+    if let Some(m) = &s.environment_map {
+        h.update(format!("{}x{}|{}", m.width, m.height, m.rotation));
+        h.update(bytemuck::cast_slice::<glam::Vec3, u8>(&m.texels));
+    }
     h.update(
         blueshift_shaders::spirv("trace/trace")
             .map(|w| bytemuck::cast_slice::<u32, u8>(&w).to_vec())

@@ -18,6 +18,8 @@ pub struct ViewArgs {
     /// glTF/GLB file, or a bundled preset: cornell-box, textured, edges.
     #[arg(long, default_value = "cornell-box")]
     pub scene: String,
+    #[command(flatten)]
+    pub lights: crate::lighting::LightArgs,
     /// Window width in pixels.
     #[arg(long, default_value_t = 640)]
     pub width: u32,
@@ -143,10 +145,11 @@ pub fn run(gpu: &GpuOpts, args: &ViewArgs) -> Result<()> {
         sampler: None,
         assets: args.assets.clone(),
         initial_seeds: args.initial_seeds.clone(),
+        lights: args.lights.clone(),
     };
     config(&template, &args.method)?;
     let opts = gpu::Options {
-        scene: load_scene(&args.scene)?,
+        scene: load_scene(&args.scene, &args.lights)?,
         assets: load_assets(&template)?,
         template,
         scale: args.scale,

@@ -3,7 +3,7 @@
 use super::*;
 use crate::geometry::{luminance, srgb_to_linear};
 use crate::scene::{Scene, Wrap, check_sizes};
-use crate::{Aabb, Bvh, Result, intersect};
+use crate::{Aabb, Bvh, EnvTables, LightKind, Result, intersect};
 use rayon::prelude::*;
 
 /// Everything the GPU needs, ready to upload. Triangle-indexed arrays are in BVH order.
@@ -17,11 +17,26 @@ pub struct SceneGpu {
     /// All texture images, RGBA8 packed into one `u32` per texel.
     pub texels: Vec<u32>,
     pub lights: Vec<GpuLight>,
+    /// Records of the lights that are not triangles (`GpuLight::triangle` indexes them).
+    pub light_params: Vec<LightParams>,
+    /// The environment map and its sampling tables, if the scene has a map.
+    pub environment: Option<EnvGpu>,
     pub info: SceneInfo,
     /// `bvh_order[i]` is the index in [`Scene::triangles`] of GPU triangle `i`.
     pub bvh_order: Vec<u32>,
     /// Depth of the deepest BVH leaf.
     pub bvh_depth: u32,
+}
+
+/// An environment map as the light image holds it.
+#[derive(Clone, Debug, Default)]
+pub struct EnvGpu {
+    pub width: u32,
+    pub height: u32,
+    /// Inclusive CDF over rows.
+    pub marginal: Vec<f32>,
+    /// `(r, g, b, conditional CDF within the row)` per texel, row-major, top row first.
+    pub texels: Vec<[f32; 4]>,
 }
 
 /// One buffer to upload.
@@ -173,6 +188,14 @@ impl SceneGpu {
                 light,
             });
         }
+        let bounds = scene.bounds();
+        let radius = if bounds.is_empty() {
+            0.0
+        } else {
+            0.5 * (bounds.max - bounds.min).length()
+        };
+        let (light_params, environment, env_light) =
+            non_triangle_lights(scene, radius, &mut lights, &mut powers, &mut total);
         let mut running = 0f64;
         let last = lights.len().saturating_sub(1);
         for (k, (l, p)) in lights.iter_mut().zip(&powers).enumerate() {
@@ -185,7 +208,14 @@ impl SceneGpu {
             };
         }
 
-        let bounds = scene.bounds();
+        let light_params_offset = lights.len() as u32;
+        // Without a map the shader's (discarded) map reads land in the first record.
+        let env_offset = if environment.is_some() {
+            light_params_offset + LIGHT_PARAMS_TEXELS * light_params.len().max(1) as u32
+        } else {
+            light_params_offset
+        };
+        let map = scene.environment_map.as_deref();
         let info = SceneInfo {
             triangle_count: triangles.len() as u32,
             node_count: bvh.nodes.len() as u32,
@@ -205,6 +235,12 @@ impl SceneGpu {
             } else {
                 bounds.max
             },
+            light_params_offset,
+            env_offset,
+            env_width: map.map_or(0, |m| m.width),
+            env_height: map.map_or(0, |m| m.height),
+            env_light,
+            env_rotation: map.map_or(Vec2::new(1.0, 0.0), |m| m.rotation_cs()),
         };
         SceneGpu {
             nodes: bvh.nodes,
@@ -214,6 +250,8 @@ impl SceneGpu {
             textures,
             texels,
             lights,
+            light_params,
+            environment,
             info,
             bvh_order: bvh.order,
             bvh_depth: bvh.depth,
@@ -341,6 +379,77 @@ impl SceneGpu {
     pub fn occluded_rays(&self, rays: &[Ray]) -> Vec<u32> {
         rays.par_iter().map(|r| self.occluded(r) as u32).collect()
     }
+}
+
+/// Appends the punctual lights and the environment map (when it is sampled) to the light list
+/// with their selection powers; returns their records, the map's tables and its light index.
+fn non_triangle_lights(
+    scene: &Scene,
+    radius: f32,
+    lights: &mut Vec<GpuLight>,
+    powers: &mut Vec<f64>,
+    total: &mut f64,
+) -> (Vec<LightParams>, Option<EnvGpu>, i32) {
+    let mut params = Vec::new();
+    let mut push = |record: LightParams, power: f64, params: &mut Vec<LightParams>| {
+        if !(power > 0.0 && power.is_finite()) {
+            return -1;
+        }
+        *total += power;
+        powers.push(power);
+        lights.push(GpuLight {
+            triangle: LIGHT_PARAMS_BIT | params.len() as u32,
+            area: 1.0,
+            pdf: 0.0,
+            cdf: 0.0,
+        });
+        params.push(record);
+        lights.len() as i32 - 1
+    };
+    for l in &scene.lights {
+        let (cos_inner, cos_outer) = l.cone_cosines();
+        let kind = match l.kind {
+            LightKind::Point => LIGHT_POINT,
+            LightKind::Spot { .. } => LIGHT_SPOT,
+            LightKind::Directional => LIGHT_DIRECTIONAL,
+        };
+        let record = LightParams {
+            position: l.position,
+            kind,
+            direction: l.direction,
+            cos_inner,
+            intensity: l.intensity,
+            cos_outer,
+        };
+        push(record, l.selection_power(radius), &mut params);
+    }
+    let Some(map) = scene.environment_map.as_deref() else {
+        return (params, None, -1);
+    };
+    let tables = map.tables();
+    let env_light = if scene.environment_sampling && EnvTables::has_light(map) {
+        let record = LightParams {
+            kind: LIGHT_ENVIRONMENT,
+            ..LightParams::default()
+        };
+        let power = std::f64::consts::PI * (radius as f64).powi(2) * map.luminance_integral();
+        push(record, power, &mut params)
+    } else {
+        -1
+    };
+    let texels = map
+        .texels
+        .iter()
+        .zip(&tables.conditional)
+        .map(|(c, &p)| [c.x, c.y, c.z, p])
+        .collect();
+    let env = EnvGpu {
+        width: map.width,
+        height: map.height,
+        marginal: tables.marginal,
+        texels,
+    };
+    (params, Some(env), env_light)
 }
 
 const ZERO_SHADING: TriangleShading = TriangleShading {

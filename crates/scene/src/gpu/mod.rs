@@ -45,6 +45,14 @@ pub const TEXTURE_WRAP_CLAMP: u32 = 1;
 pub const TEXTURE_WRAP_MIRROR: u32 = 2;
 /// `GpuTexture::flags`: magnification filter is NEAREST (else bilinear).
 pub const TEXTURE_FILTER_NEAREST: u32 = 16;
+/// `GpuLight::triangle` with this bit set: not a triangle; the low bits index the
+/// [`LightParams`] records (punctual lights and the environment map).
+pub const LIGHT_PARAMS_BIT: u32 = 0x8000_0000;
+/// `LightParams::kind` values.
+pub const LIGHT_POINT: u32 = 1;
+pub const LIGHT_SPOT: u32 = 2;
+pub const LIGHT_DIRECTIONAL: u32 = 3;
+pub const LIGHT_ENVIRONMENT: u32 = 4;
 
 gpu_struct! {
     /// One BVH node, 36 bytes. Nodes are flattened depth-first from the root at index 0, and
@@ -140,10 +148,11 @@ gpu_struct! {
 }
 
 gpu_struct! {
-    /// One emissive triangle for light sampling. `pdf` is the probability of choosing it
-    /// (power / total power, power = luminance(emission) * area * pi) and `cdf` the inclusive
-    /// running sum (last entry exactly 1): pick the first light with `xi < cdf`.
-    /// The area density of a point on it is then `pdf / area`.
+    /// One light for light sampling: an emissive triangle, or (`triangle` with
+    /// [`LIGHT_PARAMS_BIT`]) a punctual light or the environment map. `pdf` is the probability
+    /// of choosing it (power / total power; a triangle's power is luminance(emission) * area *
+    /// pi, the others' in `build.rs`) and `cdf` the inclusive running sum (last entry exactly
+    /// 1): pick the first light with `xi < cdf`. A triangle's area density is `pdf / area`.
     pub struct GpuLight {
         pub triangle: u32,
         pub area: f32,
@@ -165,6 +174,30 @@ gpu_struct! {
         pub environment: Vec3,
         pub bounds_min: Vec3,
         pub bounds_max: Vec3,
+        /// First texel of the [`LightParams`] records in the light image.
+        pub light_params_offset: u32,
+        /// First texel of the environment map's tables in the light image (see `texels`).
+        pub env_offset: u32,
+        /// Map size; 0 x 0 without a map (`environment` is then the constant radiance).
+        pub env_width: u32,
+        pub env_height: u32,
+        /// The map's index among the lights (-1: next-event estimation does not sample it).
+        pub env_light: i32,
+        /// `(cos, sin)` of the map's rotation about +Y.
+        pub env_rotation: Vec2,
+    }
+}
+
+gpu_struct! {
+    /// A light that is not a triangle (three texels): where it is, where it shines, how much.
+    /// `kind` is a `LIGHT_*` value; cone cosines are (-2, -3) for all but spots (no falloff).
+    pub struct LightParams {
+        pub position: Vec3,
+        pub kind: u32,
+        pub direction: Vec3,
+        pub cos_inner: f32,
+        pub intensity: Vec3,
+        pub cos_outer: f32,
     }
 }
 
@@ -234,6 +267,11 @@ pub(crate) fn header() -> Header {
         .constant("TEXTURE_WRAP_CLAMP", TEXTURE_WRAP_CLAMP)
         .constant("TEXTURE_WRAP_MIRROR", TEXTURE_WRAP_MIRROR)
         .constant("TEXTURE_FILTER_NEAREST", TEXTURE_FILTER_NEAREST)
+        .constant("LIGHT_PARAMS_BIT", LIGHT_PARAMS_BIT)
+        .constant("LIGHT_POINT", LIGHT_POINT)
+        .constant("LIGHT_SPOT", LIGHT_SPOT)
+        .constant("LIGHT_DIRECTIONAL", LIGHT_DIRECTIONAL)
+        .constant("LIGHT_ENVIRONMENT", LIGHT_ENVIRONMENT)
         .constant("SCENE_TEXELS_WIDTH_LOG2", SCENE_TEXELS_WIDTH_LOG2)
         .constant("NODE_TEXELS", NODE_TEXELS)
         .constant("NODE_COUNT_BITS", NODE_COUNT_BITS)
@@ -242,6 +280,7 @@ pub(crate) fn header() -> Header {
         .constant("MATERIAL_TEXELS", MATERIAL_TEXELS)
         .constant("LIGHT_TEXELS", LIGHT_TEXELS)
         .constant("TEXTURE_TEXELS", TEXTURE_TEXELS)
+        .constant("LIGHT_PARAMS_TEXELS", LIGHT_PARAMS_TEXELS)
         .constant("ATLAS_WORDS_PER_TEXEL", ATLAS_WORDS_PER_TEXEL)
         .push::<BvhNode>()
         .push::<GpuTriangle>()
@@ -249,6 +288,7 @@ pub(crate) fn header() -> Header {
         .push::<GpuMaterial>()
         .push::<GpuTexture>()
         .push::<GpuLight>()
+        .push::<LightParams>()
         .push::<SceneInfo>()
         .push::<Ray>()
         .push::<Hit>()
@@ -262,6 +302,7 @@ const _: () = {
     assert!(size_of::<GpuMaterial>() == 68);
     assert!(size_of::<GpuTexture>() == 16);
     assert!(size_of::<GpuLight>() == 16);
+    assert!(size_of::<LightParams>() == 16 * LIGHT_PARAMS_TEXELS as usize);
     assert!(size_of::<Ray>() == 32);
     assert!(size_of::<Hit>() == 16);
 };
@@ -281,6 +322,7 @@ mod tests {
             GpuMaterial::NAME,
             GpuTexture::NAME,
             GpuLight::NAME,
+            LightParams::NAME,
             SceneInfo::NAME,
             Ray::NAME,
             Hit::NAME,

@@ -16,9 +16,15 @@
 //! | triangle   | 4      | `(v0.xyz, e1.x)`, `(e1.yz, e2.xy)`, `(e2.z, material, light, 0)`, `(0, 0, 0, 0)` |
 //! | shading    | 4      | `(n0.xyz, uv0.x)`, `(n1.xyz, uv0.y)`, `(n2.xyz, uv1.x)`, `(uv1.y, uv2.xy, 0)` |
 //! | material   | 4      | `(base.rgb, metallic)`, `(emissive.rgb, roughness)`, `(flags, base_tex, emissive_tex, mr_tex)`, `(specular_color.rgb, specular)` |
-//! | light      | 1      | `(triangle, area, pdf, cdf)` (= [`GpuLight`])                        |
+//! | light      | 1      | `(triangle, area, pdf, cdf)` (= [`GpuLight`]); then the regions below |
 //! | texture    | 1      | `(offset, width, height, flags)` (= [`GpuTexture`])                  |
 //! | texel      | 1/4    | four packed RGBA8 texels of the atlas per image texel                |
+//!
+//! The light image holds, after the [`GpuLight`]s: the [`LightParams`] records (3 texels each,
+//! `(position, kind)`, `(direction, cos_inner)`, `(intensity, cos_outer)`, from
+//! `SceneInfo::light_params_offset`; at least one, zeroed when there are none), then with an
+//! environment map, from `SceneInfo::env_offset`: `height` texels `(marginal cdf, 0, 0, 0)`,
+//! then `width * height` texels `(r, g, b, conditional cdf)`, row-major, top row first.
 //!
 //! Node `i` occupies texels `NODE_TEXELS * (i + 1) ..` (texels 0 and 1 are padding), and a
 //! triangle 4 texels of which the 4th is padding: the two children of an interior node (at an
@@ -44,6 +50,7 @@ pub const TRIANGLE_TEXELS: u32 = 4;
 pub const SHADING_TEXELS: u32 = 4;
 pub const MATERIAL_TEXELS: u32 = 4;
 pub const LIGHT_TEXELS: u32 = 1;
+pub const LIGHT_PARAMS_TEXELS: u32 = 3;
 pub const TEXTURE_TEXELS: u32 = 1;
 /// Low bits of a node's second texel's `w` that hold `count` (`skip` above them).
 pub const NODE_COUNT_BITS: u32 = 3;
@@ -196,11 +203,31 @@ impl SceneGpu {
                 ]
             })
             .collect();
-        let lights = self
+        let mut lights: Vec<Texel> = self
             .lights
             .iter()
             .map(|l| [l.triangle, f(l.area), f(l.pdf), f(l.cdf)])
             .collect();
+        debug_assert_eq!(lights.len() as u32, self.info.light_params_offset);
+        let zero = [LightParams::default()];
+        let params = if self.light_params.is_empty() {
+            &zero[..]
+        } else {
+            &self.light_params[..]
+        };
+        lights.extend(params.iter().flat_map(|p| {
+            let v = |a: Vec3, w: u32| [f(a.x), f(a.y), f(a.z), w];
+            [
+                v(p.position, p.kind),
+                v(p.direction, f(p.cos_inner)),
+                v(p.intensity, f(p.cos_outer)),
+            ]
+        }));
+        if let Some(env) = &self.environment {
+            debug_assert_eq!(lights.len() as u32, self.info.env_offset);
+            lights.extend(env.marginal.iter().map(|&m| [f(m), 0, 0, 0]));
+            lights.extend(env.texels.iter().map(|t| t.map(f)));
+        }
         let textures = self
             .textures
             .iter()
@@ -314,7 +341,11 @@ mod tests {
                 ]
             );
         }
-        assert_eq!(t.lights.texels.len(), g.lights.len());
+        // The GpuLights, then one (zeroed) LightParams record: no punctual lights, no map.
+        let records = LIGHT_PARAMS_TEXELS as usize;
+        assert_eq!(t.lights.texels.len(), g.lights.len() + records);
+        assert!(t.lights.texels[g.lights.len()..].iter().all(|x| *x == [0; 4]));
+        assert_eq!(g.info.light_params_offset as usize, g.lights.len());
         for (l, x) in g.lights.iter().zip(&t.lights.texels) {
             assert_eq!(
                 *x,

@@ -7,20 +7,22 @@
 //! KHR_materials_emissive_strength; KHR_materials_specular factors (its textures are skipped);
 //! the first perspective camera; the environment.
 //!
-//! Environment: glTF has no environment light, so it is taken from
-//! [`LoadOptions::environment`] if set, else from the scene's `extras`
-//! `{"blueshift_environment": [r, g, b]}` (linear radiance), else black.
+//! Lights: emissive materials and `KHR_lights_punctual` (see `lights`). glTF has no
+//! environment light, so it is taken from [`LoadOptions::environment`] if set, else from the
+//! scene's `extras` `{"blueshift_environment": [r, g, b]}` (linear radiance), else black (the
+//! caller may then light a dark scene with [`Scene::light_if_dark`]).
 //!
 //! Bad data: a missing file, malformed JSON/GLB (GLB headers are checked before the reader
 //! sees them, see `glb`), missing buffers, unreadable accessors, out-of-range vertex indices
 //! and non-finite positions are errors ([`SceneError`]).
 //! Zero-area triangles are skipped and counted in one warning. Unsupported content
-//! (non-triangle modes, normal/occlusion maps, texture transforms, punctual lights, other
+//! (non-triangle modes, normal/occlusion maps, texture transforms, unusable lights, other
 //! extensions, undecodable images, ...) is skipped with one warning per kind in
 //! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
 
 mod glb;
 mod guard;
+mod lights;
 mod material;
 mod precheck;
 mod primitive;
@@ -31,12 +33,22 @@ use crate::{Camera, Result, SceneError};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::buffer;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// An environment given by the caller: a constant or a map.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EnvironmentSource {
+    /// Constant linear radiance.
+    Constant(Vec3),
+    /// An equirectangular map ([`crate::EnvMap::load`]).
+    Map(Arc<crate::EnvMap>),
+}
 
 /// Options for [`Scene::load_with`].
 #[derive(Clone, Debug, Default)]
 pub struct LoadOptions {
-    /// Overrides the environment radiance from the file (linear RGB).
-    pub environment: Option<Vec3>,
+    /// Overrides the environment from the file.
+    pub environment: Option<EnvironmentSource>,
     /// Do not print warnings to stderr (they are still collected in `Scene::warnings`).
     pub quiet: bool,
 }
@@ -115,8 +127,16 @@ pub(crate) fn load_bytes(
 ) -> Result<Scene> {
     let path = name;
     let mut scene = guard::catch_panics(path, || load_inner(path, bytes, base))?;
-    if let Some(env) = options.environment {
-        scene.environment = env;
+    match &options.environment {
+        Some(EnvironmentSource::Constant(c)) => {
+            scene.environment = *c;
+            scene.environment_map = None;
+        }
+        Some(EnvironmentSource::Map(m)) => {
+            scene.environment = Vec3::ZERO;
+            scene.environment_map = Some(m.clone());
+        }
+        None => {}
     }
     if !options.quiet {
         for w in &scene.warnings {
@@ -179,6 +199,7 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
 
     let mut triangles = Vec::new();
     let mut camera = None;
+    let mut punctual = Vec::new();
     let mut stack: Vec<(gltf::Node, Mat4, usize)> =
         gltf_scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
     stack.reverse();
@@ -203,6 +224,9 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
             ctx.warnings.warn("skin", || {
                 "skinning ignored: meshes are drawn in bind pose".into()
             });
+        }
+        if let Some(light) = lights::read(&document, &node, &world, &mut ctx.warnings) {
+            punctual.push(light);
         }
         if let Some(cam) = node.camera() {
             read_camera(&cam, &world, &mut camera, &mut ctx.warnings);
@@ -249,6 +273,9 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
         images,
         camera,
         environment,
+        environment_map: None,
+        environment_sampling: true,
+        lights: punctual,
         warnings: ctx.warnings.finish(),
     })
 }
@@ -309,9 +336,12 @@ fn load_buffers(
 fn warn_extensions(document: &gltf::Document, warnings: &mut Warnings) {
     for ext in document.extensions_used() {
         let reason = match ext {
-            "KHR_materials_emissive_strength" | "KHR_materials_specular" => continue,
+            "KHR_materials_emissive_strength"
+            | "KHR_materials_specular"
+            | "KHR_lights_punctual" => {
+                continue;
+            }
             "KHR_texture_transform" => "ignored: textures are sampled without the transform",
-            "KHR_lights_punctual" => "ignored: only emissive triangles emit light",
             e if e.starts_with("KHR_materials_") => "ignored: only metallic-roughness is used",
             _ => "not supported, ignored",
         };

@@ -1,0 +1,113 @@
+//! `--environment` and friends: how a scene is lit beyond its own emitters and lights.
+use anyhow::{Context, Result, bail};
+use blueshift_scene::{EnvMap, EnvironmentSource, Scene};
+use glam::Vec3;
+use std::path::Path;
+use std::sync::Arc;
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct LightArgs {
+    /// Environment light: `R,G,B` (constant linear radiance) or an equirectangular `.hdr` /
+    /// `.exr` map (centre facing -Z, +Y up). Default: the scene's own; a scene with no light
+    /// at all gets a uniform white environment (radiance 1) and a warning.
+    #[arg(long, value_name = "R,G,B|FILE")]
+    pub environment: Option<String>,
+    /// Turn the map about +Y by DEG degrees (counter-clockwise seen from above: at 90 the
+    /// image centre faces -X).
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
+    pub environment_rotation: f32,
+    /// Multiply the environment (given, the scene's own, or the default) by X.
+    #[arg(long, value_name = "X", default_value_t = 1.0)]
+    pub environment_intensity: f32,
+    /// How the map is sampled: importance (next-event estimation by luminance, with MIS) or
+    /// brdf (only rays that leave the scene find it; for comparisons).
+    #[arg(long, default_value = "importance", value_parser = ["importance", "brdf"])]
+    pub environment_sampling: String,
+}
+
+impl Default for LightArgs {
+    fn default() -> Self {
+        LightArgs {
+            environment: None,
+            environment_rotation: 0.0,
+            environment_intensity: 1.0,
+            environment_sampling: "importance".into(),
+        }
+    }
+}
+
+impl LightArgs {
+    /// The environment the flags name, with the map's warning (bad texels), if any.
+    pub fn source(&self) -> Result<(Option<EnvironmentSource>, Option<String>)> {
+        let Some(spec) = &self.environment else {
+            return Ok((None, None));
+        };
+        if let Some(rgb) = parse_rgb(spec)? {
+            return Ok((Some(EnvironmentSource::Constant(rgb)), None));
+        }
+        let (map, warning) = EnvMap::load(Path::new(spec)).context("--environment")?;
+        Ok((Some(EnvironmentSource::Map(Arc::new(map))), warning))
+    }
+
+    /// Checks the numbers, then applies the default environment (returning its warning),
+    /// intensity, rotation and sampling to a loaded scene.
+    pub fn apply(&self, scene: &mut Scene) -> Result<Option<String>> {
+        let k = self.environment_intensity;
+        if !(k.is_finite() && k >= 0.0) {
+            bail!("--environment-intensity must be a finite number >= 0, got {k}");
+        }
+        let r = self.environment_rotation;
+        if !r.is_finite() {
+            bail!("--environment-rotation must be a finite number of degrees, got {r}");
+        }
+        let warning = scene.light_if_dark();
+        scene.scale_environment(k);
+        scene.rotate_environment(r.to_radians());
+        scene.environment_sampling = self.environment_sampling == "importance";
+        Ok(warning)
+    }
+}
+
+/// `R,G,B` as a colour; `None` for a file name (no comma, or a map's extension).
+fn parse_rgb(spec: &str) -> Result<Option<Vec3>> {
+    let lower = spec.to_ascii_lowercase();
+    if !spec.contains(',') || lower.ends_with(".hdr") || lower.ends_with(".exr") {
+        return Ok(None);
+    }
+    let values: Vec<f32> = spec
+        .split(',')
+        .filter_map(|p| p.trim().parse().ok())
+        .collect();
+    let n = spec.split(',').count();
+    if n != 3 || values.len() != 3 || values.iter().any(|v| !v.is_finite() || *v < 0.0) {
+        bail!(
+            "--environment {spec}: a constant environment is R,G,B: three finite numbers >= 0 \
+             (linear radiance)"
+        );
+    }
+    Ok(Some(Vec3::new(values[0], values[1], values[2])))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rgb_is_parsed_and_bad_numbers_are_named() {
+        assert_eq!(
+            parse_rgb("1,0.5,2").unwrap(),
+            Some(Vec3::new(1.0, 0.5, 2.0))
+        );
+        assert_eq!(parse_rgb("sky.hdr").unwrap(), None);
+        assert_eq!(parse_rgb("maps/a,b.hdr").unwrap(), None);
+        for bad in ["1,2", "1,-2,3", "1,nan,3", "1,inf,2", "1,2,3,4"] {
+            let e = parse_rgb(bad).unwrap_err().to_string();
+            assert!(e.contains("R,G,B"), "{bad}: {e}");
+        }
+    }
+}

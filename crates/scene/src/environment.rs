@@ -1,0 +1,444 @@
+//! Environment maps: equirectangular HDR images (`.hdr`, `.exr`) lighting what rays leave the
+//! scene towards, and the importance-sampling tables the trace shader reads.
+//!
+//! Orientation (+Y up): the image centre faces -Z, three quarters across faces +X, the top
+//! row is straight up. Image coordinate `(u, v)` (u to the right, v down, both 0..1) is the
+//! direction at azimuth `phi = 2 pi (u - 0.5)` from -Z towards +X and polar angle
+//! `theta = pi v` from +Y: `(sin theta sin phi, cos theta, -sin theta cos phi)`. Seen from
+//! inside, looking along -Z, the map appears unmirrored. A rotation of `a` turns the
+//! map about +Y counter-clockwise seen from above: at 90 degrees the image centre faces -X.
+//!
+//! Sampling: texel `(i, j)` is chosen with probability proportional to its luminance times
+//! `sin theta` at its row centre (a marginal CDF over rows, a conditional CDF per row, both
+//! inverted by binary search so stratified inputs stay stratified), then a uniform point in
+//! it; the solid-angle density is `p(i, j) W H / (2 pi^2 sin theta)`. The functions here are
+//! the CPU twins of `env_*` in `shaders/include/lights.glsl` (same f32 operations).
+
+use crate::geometry::luminance;
+use glam::{Vec2, Vec3};
+use std::f32::consts::{PI, TAU};
+use std::path::{Path, PathBuf};
+
+/// Largest map side accepted (a 16k x 8k map is 2 GiB of texels on the device already).
+pub const MAX_ENV_SIDE: u32 = 16384;
+
+/// An equirectangular environment map, intensity applied.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvMap {
+    /// The file it came from (labels messages).
+    pub source: PathBuf,
+    pub width: u32,
+    pub height: u32,
+    /// Linear RGB radiance, row-major, top row (+Y) first.
+    pub texels: Vec<Vec3>,
+    /// Rotation about +Y, radians (see the module documentation).
+    pub rotation: f32,
+}
+
+/// What went wrong reading a map (the caller names the flag or file).
+#[derive(Debug, thiserror::Error)]
+pub enum EnvMapError {
+    #[error("{}: environment map not found", path.display())]
+    NotFound { path: PathBuf },
+    #[error("{}: cannot read the environment map: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error(
+        "{}: environment maps must be .hdr (Radiance) or .exr (OpenEXR) files",
+        path.display()
+    )]
+    Extension { path: PathBuf },
+    #[error("{}: cannot decode the environment map: {message}", path.display())]
+    Decode { path: PathBuf, message: String },
+    #[error(
+        "{}: environment map is {width}x{height}; it must be at least 2x1 and at most \
+         {MAX_ENV_SIDE} texels a side",
+        path.display()
+    )]
+    Size {
+        path: PathBuf,
+        width: u32,
+        height: u32,
+    },
+}
+
+impl EnvMap {
+    /// Reads an equirectangular `.hdr` or `.exr` file. Texels that are NaN, infinite or
+    /// negative become 0, reported in the returned warning (one line).
+    pub fn load(path: &Path) -> Result<(EnvMap, Option<String>), EnvMapError> {
+        let bytes = std::fs::read(path).map_err(|e| match e.kind() {
+            std::io::ErrorKind::NotFound => EnvMapError::NotFound {
+                path: path.to_path_buf(),
+            },
+            _ => EnvMapError::Io {
+                path: path.to_path_buf(),
+                source: e,
+            },
+        })?;
+        Self::from_bytes(path, &bytes)
+    }
+
+    /// Decodes a map from memory; `path` gives the format (by extension) and labels errors.
+    pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<(EnvMap, Option<String>), EnvMapError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let format = match ext.as_deref() {
+            Some("hdr") => image::ImageFormat::Hdr,
+            Some("exr") => image::ImageFormat::OpenExr,
+            _ => {
+                return Err(EnvMapError::Extension {
+                    path: path.to_path_buf(),
+                });
+            }
+        };
+        let decode = |message: String| EnvMapError::Decode {
+            path: path.to_path_buf(),
+            message,
+        };
+        let mut reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(MAX_ENV_SIDE);
+        limits.max_image_height = Some(MAX_ENV_SIDE);
+        reader.limits(limits);
+        // The decoders are third-party code fed untrusted bytes: a panic is a decode error.
+        let decoded = std::panic::catch_unwind(move || reader.decode())
+            .map_err(|_| decode("the decoder failed on malformed data".into()))?
+            .map_err(|e| decode(e.to_string()))?;
+        let (width, height) = (decoded.width(), decoded.height());
+        if width < 2 || height < 1 || width > MAX_ENV_SIDE || height > MAX_ENV_SIDE {
+            return Err(EnvMapError::Size {
+                path: path.to_path_buf(),
+                width,
+                height,
+            });
+        }
+        let rgb = decoded.into_rgb32f();
+        let mut bad = 0usize;
+        let texels = rgb
+            .pixels()
+            .map(|p| {
+                let c = Vec3::from_array(p.0);
+                if c.is_finite() && c.min_element() >= 0.0 {
+                    c
+                } else {
+                    bad += 1;
+                    Vec3::ZERO
+                }
+            })
+            .collect();
+        let warning = (bad > 0).then(|| {
+            format!(
+                "{}: {bad} environment map texels are NaN, infinite or negative; they are \
+                 treated as black",
+                path.display()
+            )
+        });
+        let map = EnvMap {
+            source: path.to_path_buf(),
+            width,
+            height,
+            texels,
+            rotation: 0.0,
+        };
+        Ok((map, warning))
+    }
+
+    /// A map of one constant radiance (tests and furnaces).
+    pub fn constant(width: u32, height: u32, radiance: Vec3) -> EnvMap {
+        EnvMap {
+            source: PathBuf::from("<constant>"),
+            width,
+            height,
+            texels: vec![radiance; (width * height) as usize],
+            rotation: 0.0,
+        }
+    }
+
+    /// Multiplies every texel by `k`.
+    pub fn scale(&mut self, k: f32) {
+        for t in &mut self.texels {
+            *t *= k;
+        }
+    }
+
+    /// `(cos, sin)` of the rotation, as the shader receives them.
+    pub fn rotation_cs(&self) -> Vec2 {
+        Vec2::new(self.rotation.cos(), self.rotation.sin())
+    }
+
+    /// Radiance towards world direction `d` (unit length): the texel under it, no filtering
+    /// (so the sampled density is exactly proportional to what is seen).
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        let (i, j) = env_texel_of(d, self.rotation_cs(), self.width, self.height);
+        self.texels[(j * self.width + i) as usize]
+    }
+
+    /// Integral of luminance over the sphere (W/m^2/sr x sr), for light selection.
+    pub fn luminance_integral(&self) -> f64 {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let texel_area = 2.0 * std::f64::consts::PI * std::f64::consts::PI / (w * h) as f64;
+        (0..h)
+            .map(|j| {
+                let s = (std::f64::consts::PI * (j as f64 + 0.5) / h as f64).sin();
+                let row: f64 = self.texels[j * w..(j + 1) * w]
+                    .iter()
+                    .map(|&c| luminance(c) as f64)
+                    .sum();
+                row * s * texel_area
+            })
+            .sum()
+    }
+
+    /// The sampling tables.
+    pub fn tables(&self) -> EnvTables {
+        EnvTables::new(self)
+    }
+}
+
+/// Inclusive CDFs for importance sampling (last entry of each exactly 1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvTables {
+    pub width: u32,
+    pub height: u32,
+    /// Over rows, `height` entries.
+    pub marginal: Vec<f32>,
+    /// Per row over its texels, `width * height` entries.
+    pub conditional: Vec<f32>,
+}
+
+/// Inclusive running sums of `w` over their total as f32, the last exactly 1; a zero total
+/// gives the uniform CDF (such a row is never chosen: its marginal weight is 0).
+fn cdf(w: &[f64]) -> Vec<f32> {
+    let total: f64 = w.iter().sum();
+    let n = w.len();
+    let mut run = 0f64;
+    w.iter()
+        .enumerate()
+        .map(|(k, &x)| {
+            run += x;
+            if k + 1 == n {
+                1.0
+            } else if total > 0.0 {
+                (run / total) as f32
+            } else {
+                (k + 1) as f32 / n as f32
+            }
+        })
+        .collect()
+}
+
+impl EnvTables {
+    fn new(map: &EnvMap) -> EnvTables {
+        let (w, h) = (map.width as usize, map.height as usize);
+        let mut row_weights = Vec::with_capacity(h);
+        let mut conditional = Vec::with_capacity(w * h);
+        for j in 0..h {
+            let s = (std::f64::consts::PI * (j as f64 + 0.5) / h as f64).sin();
+            let weights: Vec<f64> = map.texels[j * w..(j + 1) * w]
+                .iter()
+                .map(|&c| luminance(c) as f64 * s)
+                .collect();
+            row_weights.push(weights.iter().sum());
+            conditional.extend(cdf(&weights));
+        }
+        EnvTables {
+            width: map.width,
+            height: map.height,
+            marginal: cdf(&row_weights),
+            conditional,
+        }
+    }
+
+    /// Whether the map has any light to sample.
+    pub fn has_light(map: &EnvMap) -> bool {
+        map.texels.iter().any(|&c| luminance(c) > 0.0)
+    }
+
+    /// Probability of texel `(i, j)` (CPU twin of `env_texel_probability`).
+    pub fn probability(&self, i: u32, j: u32) -> f32 {
+        let row = &self.conditional[(j * self.width) as usize..((j + 1) * self.width) as usize];
+        let pc = row[i as usize] - if i > 0 { row[i as usize - 1] } else { 0.0 };
+        let m = &self.marginal;
+        let pm = m[j as usize] - if j > 0 { m[j as usize - 1] } else { 0.0 };
+        pm * pc
+    }
+
+    /// Samples a world direction from `u` in [0,1)^2: `(direction, solid-angle pdf)` (CPU twin
+    /// of `env_sample`). `u.y` picks the row, `u.x` the texel in it.
+    pub fn sample(&self, u: Vec2, rotation: Vec2) -> (Vec3, f32) {
+        let (j, fv) = invert(&self.marginal, u.y);
+        let row = &self.conditional[(j * self.width) as usize..((j + 1) * self.width) as usize];
+        let (i, fu) = invert(row, u.x);
+        let uv = Vec2::new(
+            (i as f32 + fu) / self.width as f32,
+            (j as f32 + fv) / self.height as f32,
+        );
+        let d = env_direction(uv, rotation);
+        let p = self.probability(i, j);
+        (d, env_density(p, d, self.width, self.height))
+    }
+
+    /// Solid-angle pdf of sampling direction `d` (CPU twin of `env_pdf`).
+    pub fn pdf(&self, d: Vec3, rotation: Vec2) -> f32 {
+        let (i, j) = env_texel_of(d, rotation, self.width, self.height);
+        env_density(self.probability(i, j), d, self.width, self.height)
+    }
+}
+
+/// The first entry with `x < cdf[k]` (binary search as the shader's) and where `x` falls
+/// within it, in [0, 1].
+fn invert(cdf: &[f32], x: f32) -> (u32, f32) {
+    let (mut lo, mut hi) = (0usize, cdf.len() - 1);
+    while lo < hi {
+        let mid = (lo + hi) / 2;
+        if x < cdf[mid] {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    let c0 = if lo > 0 { cdf[lo - 1] } else { 0.0 };
+    let f = ((x - c0) / (cdf[lo] - c0).max(1e-30)).clamp(0.0, 1.0);
+    (lo as u32, f.min(1.0 - f32::EPSILON / 2.0))
+}
+
+/// Solid-angle density of a direction `d` inside a texel of probability `p`.
+pub fn env_density(p: f32, d: Vec3, width: u32, height: u32) -> f32 {
+    let sin_theta = (1.0 - d.y * d.y).max(0.0).sqrt();
+    p * (width * height) as f32 / (2.0 * PI * PI * sin_theta.max(1e-6))
+}
+
+/// World direction of map coordinate `uv` under rotation `(cos, sin)`.
+pub fn env_direction(uv: Vec2, rotation: Vec2) -> Vec3 {
+    let phi = (uv.x - 0.5) * TAU;
+    let theta = uv.y * PI;
+    let st = theta.sin();
+    let m = Vec3::new(st * phi.sin(), theta.cos(), -st * phi.cos());
+    let (c, s) = (rotation.x, rotation.y);
+    Vec3::new(m.x * c + m.z * s, m.y, -m.x * s + m.z * c)
+}
+
+/// Map coordinate `uv` of world direction `d` (inverse of [`env_direction`]).
+pub fn env_uv(d: Vec3, rotation: Vec2) -> Vec2 {
+    let (c, s) = (rotation.x, rotation.y);
+    let mx = d.x * c - d.z * s;
+    let mz = d.x * s + d.z * c;
+    let u = 0.5 + mx.atan2(-mz) / TAU;
+    let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+    Vec2::new(u, v)
+}
+
+/// The texel `(i, j)` under direction `d`.
+pub fn env_texel_of(d: Vec3, rotation: Vec2, width: u32, height: u32) -> (u32, u32) {
+    let uv = env_uv(d, rotation);
+    let i = ((uv.x * width as f32) as i64).clamp(0, width as i64 - 1) as u32;
+    let j = ((uv.y * height as f32) as i64).clamp(0, height as i64 - 1) as u32;
+    (i, j)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gradient(w: u32, h: u32) -> EnvMap {
+        let mut m = EnvMap::constant(w, h, Vec3::ZERO);
+        for j in 0..h {
+            for i in 0..w {
+                let x = (i * 7 + j * 3) % 11;
+                m.texels[(j * w + i) as usize] = Vec3::new(x as f32, 1.0 + j as f32, 0.5);
+            }
+        }
+        m
+    }
+
+    #[test]
+    fn orientation_follows_the_documented_convention() {
+        let r0 = Vec2::new(1.0, 0.0);
+        let close = |a: Vec3, b: Vec3| (a - b).length() < 1e-5;
+        assert!(close(env_direction(Vec2::new(0.5, 0.5), r0), Vec3::NEG_Z));
+        assert!(close(env_direction(Vec2::new(0.75, 0.5), r0), Vec3::X));
+        assert!(close(env_direction(Vec2::new(0.25, 0.5), r0), Vec3::NEG_X));
+        assert!(close(env_direction(Vec2::new(0.3, 0.0), r0), Vec3::Y));
+        let r90 = Vec2::new(0.0, 1.0);
+        assert!(close(env_direction(Vec2::new(0.5, 0.5), r90), Vec3::NEG_X));
+    }
+
+    #[test]
+    fn uv_inverts_direction() {
+        for rot in [0.0f32, 0.7, -2.0] {
+            let r = Vec2::new(rot.cos(), rot.sin());
+            for k in 0..200 {
+                let uv = Vec2::new(
+                    0.01 + 0.98 * ((k * 37 % 200) as f32 / 200.0),
+                    0.05 + 0.9 * (k as f32 / 200.0),
+                );
+                let back = env_uv(env_direction(uv, r), r);
+                assert!((back - uv).length() < 1e-4, "{uv} -> {back}");
+            }
+        }
+    }
+
+    #[test]
+    fn sampled_pdf_matches_evaluated_pdf_and_integrates_to_one() {
+        let map = gradient(16, 8);
+        let t = map.tables();
+        let r = Vec2::new(0.6f32.cos(), 0.6f32.sin());
+        let n = 64;
+        let mut sum = 0f64;
+        for a in 0..n {
+            for b in 0..n {
+                let u = Vec2::new((a as f32 + 0.5) / n as f32, (b as f32 + 0.5) / n as f32);
+                let (d, pdf) = t.sample(u, r);
+                assert!((d.length() - 1.0).abs() < 1e-5);
+                let p2 = t.pdf(d, r);
+                assert!((pdf - p2).abs() <= 1e-3 * pdf, "{pdf} vs {p2}");
+                sum += 1.0 / pdf as f64; // E[1/pdf] = sphere area over the support
+            }
+        }
+        // Every texel has light, so the support is the whole sphere: E[1/pdf] = 4 pi.
+        let area = sum / (n * n) as f64;
+        assert!((area - 4.0 * std::f64::consts::PI).abs() < 0.05, "{area}");
+    }
+
+    #[test]
+    fn black_texels_are_never_sampled() {
+        let mut map = gradient(8, 4);
+        for i in 0..4 {
+            map.texels[i] = Vec3::ZERO; // left half of the top row
+        }
+        let t = map.tables();
+        for k in 0..1000 {
+            let u = Vec2::new(
+                (k as f32 + 0.5) / 1000.0,
+                ((k * 7919) % 1000) as f32 / 1000.0,
+            );
+            let (d, _) = t.sample(u, Vec2::new(1.0, 0.0));
+            assert!(luminance(map.radiance(d)) > 0.0, "{u} -> {d}");
+        }
+    }
+
+    #[test]
+    fn bad_files_are_named_errors_and_bad_texels_a_warning() {
+        let p = Path::new("/nonexistent/sky.hdr");
+        assert!(matches!(EnvMap::load(p), Err(EnvMapError::NotFound { .. })));
+        let e = EnvMap::from_bytes(Path::new("x.png"), b"abc").unwrap_err();
+        assert!(e.to_string().contains(".hdr"), "{e}");
+        let e = EnvMap::from_bytes(Path::new("x.hdr"), b"not an hdr").unwrap_err();
+        assert!(e.to_string().contains("cannot decode"), "{e}");
+        // OpenEXR stores floats as they are, NaN and negatives included (Radiance cannot).
+        let img = image::Rgb32FImage::from_raw(2, 1, vec![1.0, 2.0, 3.0, f32::NAN, -1.0, 0.5])
+            .expect("2x1");
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image::DynamicImage::ImageRgb32F(img)
+            .write_to(&mut bytes, image::ImageFormat::OpenExr)
+            .expect("exr");
+        let (map, warn) = EnvMap::from_bytes(Path::new("m.exr"), bytes.get_ref()).expect("decodes");
+        assert_eq!(map.texels, vec![Vec3::new(1.0, 2.0, 3.0), Vec3::ZERO]);
+        assert!(warn.expect("warning").contains("1 environment map texels"));
+    }
+}
