@@ -368,3 +368,49 @@ fn a_panic_is_an_internal_error_with_exit_code_2() {
     assert!(stderr.starts_with("internal error: "), "{stderr}");
     assert!(stderr.contains("this is a bug"), "{stderr}");
 }
+
+#[test]
+fn bad_environments_and_lights() {
+    let c = Case::new();
+    let o = c.render(&["--environment", "/nonexistent/sky.hdr"], &[]);
+    c.expect_error(&o, &["--environment", "/nonexistent/sky.hdr", "not found"]);
+    let garbage = c.write("garbage.hdr", b"#?RADIANCE\nnot really\n");
+    let o = c.render(&["--environment", garbage.to_str().expect("utf-8")], &[]);
+    c.expect_error(&o, &["garbage.hdr", "cannot decode the environment map"]);
+    let png = c.write("sky.png", b"\x89PNG");
+    let o = c.render(&["--environment", png.to_str().expect("utf-8")], &[]);
+    c.expect_error(&o, &["sky.png", ".hdr (Radiance) or .exr (OpenEXR)"]);
+    let o = c.render(&["--environment", "1,-2,3"], &[]);
+    c.expect_error(&o, &["--environment 1,-2,3", "R,G,B"]);
+    let o = c.render(&["--environment-intensity", "-1"], &[]);
+    c.expect_error(&o, &["--environment-intensity must be a finite number >= 0"]);
+
+    // NaN and negative texels: a warning, and they count as black.
+    let img = image::Rgb32FImage::from_raw(2, 1, vec![1.0, 1.0, 1.0, f32::NAN, -1.0, 0.0])
+        .expect("2x1");
+    let mut exr = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgb32F(img)
+        .write_to(&mut exr, image::ImageFormat::OpenExr)
+        .expect("exr");
+    let map = c.write("nan.exr", exr.get_ref());
+    let o = c.render(&["--environment", map.to_str().expect("utf-8")], &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stderr.contains("1 environment map texels are NaN"), "{stderr}");
+
+    // A light with a negative intensity: one warning, the light is skipped; with nothing
+    // else emitting, the default environment and its warning.
+    let mut doc: serde_json::Value =
+        serde_json::from_str(&triangle_gltf(GOOD, "")).expect("json");
+    doc["extensionsUsed"] = serde_json::json!(["KHR_lights_punctual"]);
+    doc["extensions"] = serde_json::json!({ "KHR_lights_punctual": { "lights": [
+        { "type": "point", "intensity": -5.0 } ] } });
+    doc["nodes"][0]["extensions"] = serde_json::json!({ "KHR_lights_punctual": { "light": 0 } });
+    let p = c.write("negative.gltf", doc.to_string());
+    let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stderr.contains("light 0 has intensity -5"), "{stderr}");
+    assert!(stderr.contains("nothing emits light"), "{stderr}");
+    assert_eq!(stderr.matches("nothing emits light").count(), 1, "{stderr}");
+}
