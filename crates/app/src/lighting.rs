@@ -22,7 +22,12 @@ pub struct LightArgs {
     )]
     pub environment_rotation: f32,
     /// Multiply the environment (given, the scene's own, or the default) by X.
-    #[arg(long, value_name = "X", default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "X",
+        default_value_t = 1.0,
+        allow_negative_numbers = true
+    )]
     pub environment_intensity: f32,
     /// How the map is sampled: importance (next-event estimation by luminance, with MIS) or
     /// brdf (only rays that leave the scene find it; for comparisons).

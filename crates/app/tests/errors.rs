@@ -383,11 +383,14 @@ fn bad_environments_and_lights() {
     let o = c.render(&["--environment", "1,-2,3"], &[]);
     c.expect_error(&o, &["--environment 1,-2,3", "R,G,B"]);
     let o = c.render(&["--environment-intensity", "-1"], &[]);
-    c.expect_error(&o, &["--environment-intensity must be a finite number >= 0"]);
+    c.expect_error(
+        &o,
+        &["--environment-intensity must be a finite number >= 0"],
+    );
 
     // NaN and negative texels: a warning, and they count as black.
-    let img = image::Rgb32FImage::from_raw(2, 1, vec![1.0, 1.0, 1.0, f32::NAN, -1.0, 0.0])
-        .expect("2x1");
+    let img =
+        image::Rgb32FImage::from_raw(2, 1, vec![1.0, 1.0, 1.0, f32::NAN, -1.0, 0.0]).expect("2x1");
     let mut exr = std::io::Cursor::new(Vec::new());
     image::DynamicImage::ImageRgb32F(img)
         .write_to(&mut exr, image::ImageFormat::OpenExr)
@@ -396,12 +399,14 @@ fn bad_environments_and_lights() {
     let o = c.render(&["--environment", map.to_str().expect("utf-8")], &[]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{stderr}");
-    assert!(stderr.contains("1 environment map texels are NaN"), "{stderr}");
+    assert!(
+        stderr.contains("1 environment map texels are NaN"),
+        "{stderr}"
+    );
 
     // A light with a negative intensity: one warning, the light is skipped; with nothing
     // else emitting, the default environment and its warning.
-    let mut doc: serde_json::Value =
-        serde_json::from_str(&triangle_gltf(GOOD, "")).expect("json");
+    let mut doc: serde_json::Value = serde_json::from_str(&triangle_gltf(GOOD, "")).expect("json");
     doc["extensionsUsed"] = serde_json::json!(["KHR_lights_punctual"]);
     doc["extensions"] = serde_json::json!({ "KHR_lights_punctual": { "lights": [
         { "type": "point", "intensity": -5.0 } ] } });

@@ -186,6 +186,7 @@ impl Scene {
             return None;
         }
         self.environment = DEFAULT_ENVIRONMENT;
+        self.environment_map = None; // (an all-black map)
         Some(format!(
             "{}: nothing emits light (no emissive material, no KHR_lights_punctual light, no \
              environment): lit by a uniform white environment of radiance 1; choose lighting \

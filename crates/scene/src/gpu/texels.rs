@@ -344,7 +344,11 @@ mod tests {
         // The GpuLights, then one (zeroed) LightParams record: no punctual lights, no map.
         let records = LIGHT_PARAMS_TEXELS as usize;
         assert_eq!(t.lights.texels.len(), g.lights.len() + records);
-        assert!(t.lights.texels[g.lights.len()..].iter().all(|x| *x == [0; 4]));
+        assert!(
+            t.lights.texels[g.lights.len()..]
+                .iter()
+                .all(|x| *x == [0; 4])
+        );
         assert_eq!(g.info.light_params_offset as usize, g.lights.len());
         for (l, x) in g.lights.iter().zip(&t.lights.texels) {
             assert_eq!(
