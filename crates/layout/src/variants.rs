@@ -214,7 +214,8 @@ mod tests {
     #[test]
     fn variants_are_the_specialised_ones_and_two_counting_shaders() {
         let all = TraceVariant::all();
-        assert_eq!(all.len(), Sampler::ALL.len() * 8 + 2);
+        // Mask, textures, Lambert and lights on or off per sampler, plus the counting shaders.
+        assert_eq!(all.len(), Sampler::ALL.len() * 16 + 2);
         let counting: Vec<_> = all.iter().filter(|v| v.loop_stats).collect();
         assert_eq!(counting.len(), 2);
         assert!(counting.iter().all(|v| v.canonical() == **v));
