@@ -10,7 +10,9 @@
 //      phase, which the sorting pass ranks against the next frame's mask slice (once a whole
 //      cycle has run; before that it passes this frame's seeds and keys through);
 //   3. copies that mask slice out of the spatio-temporal volume (invocations i < N*N).
-// One invocation per index i < max(width * height, N * N).
+// One invocation per (x, y) < (max(width, N), max(height, N)), a workgroup per 64 pixels of a
+// row: no invocation divides (llvmpipe scalarises a vector division by a run-time value), and
+// a workgroup touches one run of each buffer (8x8 tiles measured twice as slow).
 // CPU twin: crates/permute/src/cycle.rs cycle_keys_cpu.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
@@ -29,12 +31,13 @@ layout(set = 0, binding = 5, scalar) writeonly buffer CycleMask { uint cycle_mas
 layout(set = 0, binding = 6, scalar) readonly buffer Accum { vec4 accum[]; };
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
-    uint area = p.mask_size * p.mask_size;
-    if (i < area) cycle_mask[i] = volume[p.mask_layer * area + i];
+    uvec2 q = gl_GlobalInvocationID.xy;
+    uint N = p.mask_size;
+    if (q.x < N && q.y < N) cycle_mask[q.y * N + q.x] = volume[(p.mask_layer * N + q.y) * N + q.x];
+    if (q.x >= p.width || q.y >= p.height) return;
     uint pixels = p.width * p.height;
-    if (i >= pixels) return;
-    uint s = (i / p.width) * p.stride + i % p.width;
+    uint i = q.y * p.width + q.x;
+    uint s = q.y * p.stride + q.x;
     float key = estimate[i].w;
     if (p.mean_count > 0u) key -= accum[i].w;
     uint seed = seeds[s];

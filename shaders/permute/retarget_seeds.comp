@@ -16,10 +16,18 @@ layout(set = 0, binding = 2, scalar) writeonly buffer SeedsOut { uint seeds_out[
 void main() {
     uvec2 x = gl_GlobalInvocationID.xy;
     if (x.x >= p.padded_width || x.y >= p.padded_height) return;
-    uvec2 u = (x + uvec2(p.offset_x, p.offset_y)) % p.mask_size;
-    ivec2 d = table[u.y * p.mask_size + u.x];
-    ivec2 size = ivec2(p.padded_width, p.padded_height);
-    // Displacements are within the retarget radius (< N <= size), so one wrap suffices.
-    ivec2 t = (ivec2(x) + d + size) % size;
+    // (x + o) mod N without a modulo per pixel (llvmpipe scalarises a vector modulo by a
+    // run-time value): one for the workgroup's corner, the same in every lane, then the lane's
+    // offset (< 8) wrapped by subtraction, enough times for any N >= 1.
+    uint N = p.mask_size;
+    uvec2 u = (gl_WorkGroupID.xy * 8u + uvec2(p.offset_x, p.offset_y)) % N + gl_LocalInvocationID.xy;
+    for (uint i = 0u; i < 7u; ++i) u = mix(u, u - N, greaterThanEqual(u, uvec2(N)));
+    ivec2 d = table[u.y * N + u.x];
+    // Displacements are within the retarget radius (|d| < N <= size), so x + d + size lies in
+    // [0, 3 size): two conditional subtractions wrap it.
+    uvec2 size = uvec2(p.padded_width, p.padded_height);
+    uvec2 t = uvec2(ivec2(x) + d + ivec2(size));
+    t = mix(t, t - size, greaterThanEqual(t, size));
+    t = mix(t, t - size, greaterThanEqual(t, size));
     seeds_out[t.y * p.padded_width + t.x] = seeds_in[x.y * p.padded_width + x.x];
 }

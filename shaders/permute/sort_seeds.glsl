@@ -1,22 +1,45 @@
 // Sorting pass (Heitz & Belcour 2019): per B x B block, the seed of the k-th darkest pixel moves
-// to the position of the k-th smallest mask value. One invocation per block ranks by counting
-// over (key, in-block index), so ties are deterministic; no shared memory and no barriers
-// (barriers are expensive on CPU Vulkan implementations, and a block is at most 64 pixels).
-// Ranking is within classes (classify_pixels: surfaces of the block; all 0 for the paper's
-// method): pixels and mask values both sort on (class, key, index), so the k-th pixel and the
-// k-th mask position share a class. In place: blocks are disjoint.
-// CPU twin: crates/permute/src/cpu.rs sort_seeds_cpu.
+// to the position of the k-th smallest mask value. Ranking is within classes (classify_pixels:
+// surfaces of the block; all 0 for the paper's method): pixels and mask values both sort on
+// (class, key, in-block index), so the k-th pixel and the k-th mask position share a class and
+// ties are deterministic. In place: blocks are disjoint.
+// CPU twin: crates/permute/src/cpu.rs sort_seeds_cpu (which ranks by counting).
+//
+// Shaped for llvmpipe: one invocation per block (8 blocks per SIMD batch, no barriers), and
+// every per-pixel array is indexed only by compile-time constants, so it lives in registers
+// (a dynamic index makes each access a per-lane loop through memory). The block is laid out
+// in SORT_SLOTS slots, slot s = in-block pixel (s % SORT_ROW, s / SORT_ROW); slots outside the
+// block or the screen are invalid and sort after every valid one. Each side is one 64-bit key
+// per slot, (class : 26 bits, key : 32, slot : 6), sorted by a sorting network
+// (generated/sort_network.glsl); a third network on (pixel slot of rank r : mask slot of rank r)
+// turns the two orders into each slot's destination without any dynamic index.
 //
 // Compiled once per blueshift_layout::variants::SortVariant, which sets before the include:
 //   SORT_CLASSES  1: rank within the classes of classify_pixels; 0: one class per block
 //   SORT_HISTORY  1: rank key minus history mean (history_key); 0: the raw key
 //   SORT_PAIRS    1: antithetic pairs where SortParams::pairs asks for them; 0: the mask only
 //   SORT_SKEW     1: count skewed classes where SortParams::count_skew asks for it
-// With all four 0 this is the paper's sorting and nothing else.
+//   SORT_SLOTS    16: blocks up to 4x4; 64: up to 8x8
+// With the first four 0 this is the paper's sorting and nothing else.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "generated/params.glsl"
+#include "generated/sort_network.glsl"
 #include "sort_blocks.glsl"
+
+#if SORT_SLOTS == 16
+#define SORT_ROW 4
+#define SORT_NETWORK SORT_NETWORK_16
+#define SORT_EACH SORT_EACH_16
+#else
+#define SORT_ROW 8
+#define SORT_NETWORK SORT_NETWORK_64
+#define SORT_EACH SORT_EACH_64
+#endif
+// Compile-time in-block coordinates of slot s.
+#define SX(s) ((s) % SORT_ROW)
+#define SY(s) ((s) / SORT_ROW)
 
 layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { SortParams p; };
@@ -37,15 +60,18 @@ layout(set = 0, binding = 5, scalar) buffer Stats { uint sort_stats[2]; };
 #endif
 
 // Orders like the float (CPU twin: sort_key): positives over 0x80000000, negatives inverted,
-// 0, -0 and NaN at 0x80000000.
+// 0, -0 and NaN at 0x80000000. Never above 0xFF800000 (+inf).
 uint sort_key(float v) {
     uint b = floatBitsToUint(v);
     return v > 0.0 ? 0x80000000u | b : (v < 0.0 ? ~b : 0x80000000u);
 }
 
-// (class, key, index) of b orders before that of a.
-bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
-    return cb < ca || (cb == ca && (kb < ka || (kb == ka && b < a)));
+// The 64-bit sort key of slot s: (class, key, slot); invalid slots above every valid one
+// (class bits and key bits all set, which no valid slot has: keys stay below 0xFFFFFFFF).
+// Classes must be below 2^26 (classify_pixels writes in-block indices).
+uint64_t slot_key(bool valid, uint cls, uint key, uint s) {
+    uint64_t k = (uint64_t(cls) << 38) | (uint64_t(key) << 6);
+    return (valid ? k : ~uint64_t(0) << 6) | uint64_t(s);
 }
 
 #if SORT_PAIRS
@@ -55,50 +81,49 @@ bool before(uint cb, uint kb, uint b, uint ca, uint ka, uint a) {
 // the upper half, in the reverse order of its partner's mask key (partner: the class's pixel
 // to the left, else right, above, below), so neighbours hold opposite errors. Mask keys are
 // u16 ranks, below 0x10000.
-// Classes are in-block indices (classify_pixels' leaders, or 0), so spans index by class.
-void pair_thin_classes(SortParams p, ivec2 origin, uint n, uint cell[64], uint cls[64],
-                       inout uint mask_key[64]) {
+void pair_thin_classes(ivec2 origin, bool valid[SORT_SLOTS], uint cls[SORT_SLOTS],
+                       inout uint mkey[SORT_SLOTS]) {
     uint B = p.block;
-    uint at[64];                // visible pixel at each in-block index, or 64
-    uvec2 lo[64], hi[64];       // bounding box of each class in block coordinates
+    uvec2 lo[64], hi[64];  // bounding box of each class (classes from 63 up merged)
     for (uint k = 0u; k < 64u; ++k) {
-        at[k] = 64u;
         lo[k] = uvec2(B);
         hi[k] = uvec2(0u);
     }
-    for (uint a = 0u; a < n; ++a) {
-        at[cell[a]] = a;
-        uint c = min(cls[a], 63u);
-        uvec2 d = uvec2(cell[a] % B, cell[a] / B);
-        lo[c] = min(lo[c], d);
-        hi[c] = max(hi[c], d);
+#define BOX(s) if (valid[s]) { \
+        uint c = min(cls[s], 63u); \
+        lo[c] = min(lo[c], uvec2(SX(s), SY(s))); \
+        hi[c] = max(hi[c], uvec2(SX(s), SY(s))); \
     }
-    uint key[64];
-    for (uint a = 0u; a < n; ++a) {
-        uint k = min(cls[a], 63u);
-        bool thin = p.pairs == 2u || hi[k].x - lo[k].x < 2u || hi[k].y - lo[k].y < 2u;
-        uvec2 c = uvec2(cell[a] % B, cell[a] / B);
-        uint colour = (uint(origin.x + origin.y) + c.x + c.y + p.phase) & 1u;
-        uint partner = a;
-        ivec2 steps[4] = ivec2[4](ivec2(0, 1), ivec2(0, -1), ivec2(1, 0), ivec2(-1, 0));
-        for (uint i = 0u; i < 4u; ++i) {  // the last match wins: left has priority
-            ivec2 q = ivec2(c) + steps[i];
-            if (q.x < 0 || q.y < 0 || q.x >= int(B) || q.y >= int(B)) continue;
-            uint b = at[uint(q.y) * B + uint(q.x)];
-            if (b < 64u && cls[b] == cls[a]) partner = b;
-        }
-        key[a] = !thin || colour == 0u ? mask_key[a] : 0x1FFFFu - mask_key[partner];
+    SORT_EACH(BOX)
+    // The neighbour (dx, dy) of slot s, if in the slot grid (a constant condition), visible
+    // and of the same class; checked below, above, right, left: the last match wins.
+#define PARTNER(s, dx, dy) \
+    if (SX(s) + dx >= 0 && SX(s) + dx < SORT_ROW && SY(s) + dy >= 0 && SY(s) + dy < SORT_ROW) { \
+        const int q = clamp(s + dx + dy * SORT_ROW, 0, SORT_SLOTS - 1); \
+        if (valid[q] && cls[q] == cls[s]) partner = mkey[q]; \
     }
-    for (uint a = 0u; a < n; ++a) mask_key[a] = key[a];
+    uint key[SORT_SLOTS];
+#define PAIR_KEY(s) { \
+        uint c = min(cls[s], 63u); \
+        bool thin = p.pairs == 2u || hi[c].x - lo[c].x < 2u || hi[c].y - lo[c].y < 2u; \
+        uint colour = (uint(origin.x + origin.y) + SX(s) + SY(s) + p.phase) & 1u; \
+        uint partner = mkey[s]; \
+        PARTNER(s, 0, 1) PARTNER(s, 0, -1) PARTNER(s, 1, 0) PARTNER(s, -1, 0) \
+        key[s] = !thin || colour == 0u ? mkey[s] : 0x1FFFFu - partner; \
+    }
+    SORT_EACH(PAIR_KEY)
+    mkey = key;
 }
 #endif
 
 #if SORT_SKEW
 // (skewed, counted): classes of at least SKEW_MIN_PIXELS pixels in the block, and those among
 // them whose keys have a sample skewness |g| above SKEW_LIMIT. Keys are scaled by the largest
-// deviation from the class mean first, so that the third powers cannot overflow.
+// deviation from the class mean first, so that the third powers cannot overflow. Sums run in
+// slot order, which is the twin's row-major order.
 // CPU twin: crates/permute/src/skew.rs count_skewed_classes.
-uvec2 count_skewed_classes(uint n, uint cls[64], float count[64], float key[64]) {
+uvec2 count_skewed_classes(bool valid[SORT_SLOTS], uint cls[SORT_SLOTS], float count[64],
+                           float key[SORT_SLOTS]) {
     float mean[64], dmax[64], m2[64], m3[64];
     for (uint c = 0u; c < 64u; ++c) {
         mean[c] = 0.0;
@@ -106,19 +131,22 @@ uvec2 count_skewed_classes(uint n, uint cls[64], float count[64], float key[64])
         m2[c] = 0.0;
         m3[c] = 0.0;
     }
-    for (uint a = 0u; a < n; ++a) mean[min(cls[a], 63u)] += key[a];
+#define SK_SUM(s) if (valid[s]) mean[min(cls[s], 63u)] += key[s];
+    SORT_EACH(SK_SUM)
     for (uint c = 0u; c < 64u; ++c) mean[c] = count[c] > 0.0 ? mean[c] * (1.0 / count[c]) : 0.0;
-    for (uint a = 0u; a < n; ++a) {
-        uint c = min(cls[a], 63u);
-        dmax[c] = max(dmax[c], abs(key[a] - mean[c]));
+#define SK_MAX(s) if (valid[s]) { \
+        uint c = min(cls[s], 63u); \
+        dmax[c] = max(dmax[c], abs(key[s] - mean[c])); \
     }
-    for (uint a = 0u; a < n; ++a) {
-        uint c = min(cls[a], 63u);
-        precise float d = dmax[c] > 0.0 ? (key[a] - mean[c]) * (1.0 / dmax[c]) : 0.0;
-        precise float d2 = d * d;
-        m2[c] += d2;
-        m3[c] += d2 * d;
+    SORT_EACH(SK_MAX)
+#define SK_MOMENTS(s) if (valid[s]) { \
+        uint c = min(cls[s], 63u); \
+        precise float d = dmax[c] > 0.0 ? (key[s] - mean[c]) * (1.0 / dmax[c]) : 0.0; \
+        precise float d2 = d * d; \
+        m2[c] += d2; \
+        m3[c] += d2 * d; \
     }
+    SORT_EACH(SK_MOMENTS)
     uvec2 r = uvec2(0u);
     for (uint c = 0u; c < 64u; ++c) {
         if (count[c] < float(SKEW_MIN_PIXELS)) continue;
@@ -136,56 +164,82 @@ void main() {
     uint block = gl_GlobalInvocationID.x;
     if (block >= sort_block_count(p)) return;
     ivec2 origin = sort_block_origin(p, block);
-    // Visible pixels of the block in row-major order: (x, y) packed as y * B + x.
-    uint cell[64], lum_key[64], mask_key[64], seed[64], cls[64];
-    float val[64];
-#if SORT_HISTORY
-    float hm[64];
+    // Mask coordinates of the block's columns and rows, (origin + d + offset) mod N, stepped
+    // from one modulo per block (a vector modulo by a run-time value is scalarised).
+    // origin >= -7, so adding 8N keeps the dividend non-negative.
+    uint N = p.mask_size;
+    ivec2 o = origin + ivec2(p.offset_x, p.offset_y) + 8 * int(N);
+    uint mcol[SORT_ROW], mrow[SORT_ROW];
+    mcol[0] = uint(o.x) % N;
+    mrow[0] = uint(o.y) % N;
+#define STEP(d) \
+    mcol[d] = mcol[d - 1] + 1u == N ? 0u : mcol[d - 1] + 1u; \
+    mrow[d] = mrow[d - 1] + 1u == N ? 0u : mrow[d - 1] + 1u;
+    STEP(1) STEP(2) STEP(3)
+#if SORT_ROW == 8
+    STEP(4) STEP(5) STEP(6) STEP(7)
 #endif
+
+    bool valid[SORT_SLOTS];
+    uint seed[SORT_SLOTS], cls[SORT_SLOTS], mkey[SORT_SLOTS];
+    float val[SORT_SLOTS];
+#if SORT_HISTORY
+    float hm[SORT_SLOTS];
+#endif
+    // Loads of slot s; invalid slots read a clamped texel and are masked out later.
+#define LOAD(s) { \
+        ivec2 q = origin + ivec2(SX(s), SY(s)); \
+        valid[s] = SX(s) < B && SY(s) < B && q.x >= 0 && q.y >= 0 && q.x < int(p.width) && \
+                   q.y < int(p.height); \
+        uvec2 px = uvec2(clamp(q, ivec2(0), ivec2(p.width - 1u, p.height - 1u))); \
+        uint at = px.y * p.width + px.x; \
+        val[s] = estimate[at].w; \
+        mkey[s] = mask[mrow[SY(s)] * N + mcol[SX(s)]]; \
+        seed[s] = seeds[px.y * p.stride + px.x]; \
+        LOAD_CLASS(s, at) \
+        LOAD_HISTORY(s, at) \
+    }
+#if SORT_CLASSES
+#define LOAD_CLASS(s, at) cls[s] = classes[at];
+#else
+#define LOAD_CLASS(s, at) cls[s] = 0u;
+#endif
+#if SORT_HISTORY
+#define LOAD_HISTORY(s, at) hm[s] = hist_mean[at];
+#else
+#define LOAD_HISTORY(s, at)
+#endif
+    SORT_EACH(LOAD)
+
+    float key[SORT_SLOTS];
 #if SORT_HISTORY || SORT_SKEW
-    float csum[64], ccount[64];  // per-class sums and counts, for pixels without history
+    // Per-class sums and counts in row-major order (classes from 63 up merged), for pixels
+    // without history and for the skew counts.
+    float csum[64], ccount[64];
     for (uint k = 0u; k < 64u; ++k) {
         csum[k] = 0.0;
         ccount[k] = 0.0;
     }
-#endif
-    uint n = 0u;
-    for (uint k = 0u; k < B * B; ++k) {
-        uvec2 px;
-        if (!sort_block_pixel(p, origin, k, px)) continue;
-        cell[n] = k;
-        val[n] = estimate[px.y * p.width + px.x].w;
-#if SORT_HISTORY
-        hm[n] = hist_mean[px.y * p.width + px.x];
-#endif
-        uvec2 m = (px + uvec2(p.offset_x, p.offset_y)) % p.mask_size;
-        mask_key[n] = mask[m.y * p.mask_size + m.x];
-        seed[n] = seeds[px.y * p.stride + px.x];
-#if SORT_CLASSES
-        cls[n] = classes[px.y * p.width + px.x];
-#else
-        cls[n] = 0u;
-#endif
-#if SORT_HISTORY || SORT_SKEW
-        csum[min(cls[n], 63u)] += val[n];
-        ccount[min(cls[n], 63u)] += 1.0;
-#endif
-        n++;
+#define SUM(s) if (valid[s]) { \
+        uint c = min(cls[s], 63u); \
+        csum[c] += val[s]; \
+        ccount[c] += 1.0; \
     }
-    float key[64];
-    for (uint a = 0u; a < n; ++a) {
-#if SORT_HISTORY
-        uint c = min(cls[a], 63u);
-        float ref = isnan(hm[a]) ? csum[c] * (1.0 / ccount[c]) : hm[a];
-        key[a] = val[a] - ref;
-#else
-        key[a] = val[a];
+    SORT_EACH(SUM)
 #endif
-        lum_key[a] = sort_key(key[a]);
+#if SORT_HISTORY
+#define KEY(s) { \
+        uint c = min(cls[s], 63u); \
+        float ref = isnan(hm[s]) ? csum[c] * (1.0 / ccount[c]) : hm[s]; \
+        key[s] = val[s] - ref; \
     }
+#else
+#define KEY(s) key[s] = val[s];
+#endif
+    SORT_EACH(KEY)
 #if SORT_SKEW
     if (p.count_skew != 0u) {
-        uvec2 skew = count_skewed_classes(n, cls, ccount, key);
+        uvec2 skew = count_skewed_classes(valid, cls, ccount, key);
         if (skew.y > 0u) {
             atomicAdd(sort_stats[0], skew.x);
             atomicAdd(sort_stats[1], skew.y);
@@ -193,21 +247,30 @@ void main() {
     }
 #endif
 #if SORT_PAIRS
-    if (p.pairs != 0u) pair_thin_classes(p, origin, n, cell, cls, mask_key);
+    if (p.pairs != 0u) pair_thin_classes(origin, valid, cls, mkey);
 #endif
-    // pos_of_mask_rank[r] = the visible pixel holding the r-th smallest mask value.
-    uint pos_of_mask_rank[64];
-    for (uint a = 0u; a < n; ++a) {
-        uint r = 0u;
-        for (uint b = 0u; b < n; ++b) r += uint(before(cls[b], mask_key[b], b, cls[a], mask_key[a], a));
-        pos_of_mask_rank[r] = a;
+
+    uint64_t lk[SORT_SLOTS], mk[SORT_SLOTS];
+#define KEYS(s) \
+    lk[s] = slot_key(valid[s], cls[s], sort_key(key[s]), s); \
+    mk[s] = slot_key(valid[s], cls[s], mkey[s], s);
+    SORT_EACH(KEYS)
+#define CE_L(i, j) { uint64_t t = min(lk[i], lk[j]); lk[j] = max(lk[i], lk[j]); lk[i] = t; }
+#define CE_M(i, j) { uint64_t t = min(mk[i], mk[j]); mk[j] = max(mk[i], mk[j]); mk[i] = t; }
+    SORT_NETWORK(CE_L)
+    SORT_NETWORK(CE_M)
+    // Rank r pairs the pixel slot lk[r] with the mask slot mk[r] (valid with valid: both sides
+    // have the same number of valid slots first). Sorted by pixel slot, entry s holds slot s's
+    // destination.
+    uint dest[SORT_SLOTS];
+#define PAIR(s) dest[s] = (uint(lk[s] & 63ul) << 6) | uint(mk[s] & 63ul);
+    SORT_EACH(PAIR)
+#define CE_D(i, j) { uint t = min(dest[i], dest[j]); dest[j] = max(dest[i], dest[j]); dest[i] = t; }
+    SORT_NETWORK(CE_D)
+#define STORE(s) if (valid[s]) { \
+        uint d = dest[s] & 63u; \
+        uvec2 t = uvec2(origin + ivec2(d % SORT_ROW, d / SORT_ROW)); \
+        seeds[t.y * p.stride + t.x] = seed[s]; \
     }
-    for (uint a = 0u; a < n; ++a) {
-        uint r = 0u;
-        for (uint b = 0u; b < n; ++b) r += uint(before(cls[b], lum_key[b], b, cls[a], lum_key[a], a));
-        uint k = cell[pos_of_mask_rank[r]];
-        uvec2 d;
-        sort_block_pixel(p, origin, k, d);
-        seeds[d.y * p.stride + d.x] = seed[a];
-    }
+    SORT_EACH(STORE)
 }

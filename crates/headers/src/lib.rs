@@ -55,6 +55,7 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant_f32("SIMILAR_PLANE_DISTANCE", motion::SIMILAR_PLANE_DISTANCE)
                 .render("motion"),
         ),
+        ("sort_network", blueshift_layout::network::glsl_header()),
         (
             "view",
             Header::new()

@@ -7,6 +7,7 @@
 //! `shaders/include/generated/` and a test regenerates them and fails on any difference.
 
 pub mod motion;
+pub mod network;
 pub mod params;
 pub mod variants;
 

@@ -140,6 +140,9 @@ pub struct SortVariant {
     pub pairs: bool,
     /// Count skewed classes (`stats` binding, `SortParams::count_skew`).
     pub skew: bool,
+    /// Blocks up to 8x8 (64 slots per block); otherwise up to 4x4 (16 slots), whose sorting
+    /// networks are a tenth of the size.
+    pub large: bool,
 }
 
 impl SortVariant {
@@ -149,19 +152,26 @@ impl SortVariant {
         history: false,
         pairs: false,
         skew: false,
+        large: false,
     };
 
-    /// `permute/sort_seeds` for the paper, else with a suffix per extension, e.g.
-    /// `permute/sort_seeds_classes_history_pairs`.
+    /// `permute/sort_seeds` for the paper (blocks up to 4x4), else with a suffix per
+    /// extension, e.g. `permute/sort_seeds_classes_history_pairs_64`.
     pub fn shader(self) -> String {
         let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
         format!(
-            "permute/sort_seeds{}{}{}{}",
+            "permute/sort_seeds{}{}{}{}{}",
             flag(self.classes, "_classes"),
             flag(self.history, "_history"),
             flag(self.pairs, "_pairs"),
             flag(self.skew, "_skew"),
+            flag(self.large, "_64"),
         )
+    }
+
+    /// Whether blocks of edge `block` need the 64-slot variant.
+    pub fn large_for(block: u32) -> bool {
+        block > 4
     }
 
     fn variant(self) -> ShaderVariant {
@@ -174,18 +184,23 @@ impl SortVariant {
                 ("SORT_HISTORY", bit(self.history)),
                 ("SORT_PAIRS", bit(self.pairs)),
                 ("SORT_SKEW", bit(self.skew)),
+                (
+                    "SORT_SLOTS",
+                    if self.large { "64" } else { "16" }.to_string(),
+                ),
             ],
         }
     }
 
-    /// Every combination: 16 small shaders.
+    /// Every combination: 32 shaders.
     pub fn all() -> Vec<SortVariant> {
-        (0..16u32)
+        (0..32u32)
             .map(|b| SortVariant {
                 classes: b & 1 != 0,
                 history: b & 2 != 0,
                 pairs: b & 4 != 0,
                 skew: b & 8 != 0,
+                large: b & 16 != 0,
             })
             .collect()
     }

@@ -1,4 +1,4 @@
-//! CPU twins of `shaders/permute/sort_seeds.comp` and `retarget_seeds.comp`. Same inputs,
+//! CPU twins of `shaders/permute/sort_seeds.glsl` and `retarget_seeds.comp`. Same inputs,
 //! same arithmetic (integer ranks, over keys from the same float operations in the same
 //! order), so the GPU must agree exactly.
 use crate::skew::count_skewed_classes;
@@ -34,7 +34,8 @@ fn ranks(keys: &[(u32, u32, usize)]) -> Vec<usize> {
 /// `classes` (per visible pixel, e.g. from classify_pixels; all equal for the paper's method):
 /// pixels and mask values rank on (class, key, index), so seeds only move within a class.
 /// With `p.pairs`, classes should be in-block indices (below 64, as classify_pixels writes):
-/// the thin-class test merges classes from 63 up.
+/// the thin-class test merges classes from 63 up. The GPU pass packs classes into 26 bits of
+/// its sort keys, so it agrees for classes below 2^26.
 /// `history` (per visible pixel; zeros: the raw key) is subtracted from the key before
 /// ranking; NaN stands for the mean key of the pixel's class in the block (history_key_cpu).
 /// Returns (skewed classes, classes counted) summed over the blocks with `p.count_skew`

@@ -133,7 +133,7 @@ impl CyclePass {
 
     /// Records the pass.
     pub fn cycle_keys(&self, rec: &mut Recorder, p: &CycleParams, b: &CycleBuffers) -> Result<()> {
-        let n = (p.width * p.height).max(p.mask_size * p.mask_size);
+        let (w, h) = (p.width.max(p.mask_size), p.height.max(p.mask_size));
         rec.dispatch(
             &self.pipeline,
             &[
@@ -146,7 +146,7 @@ impl CyclePass {
                 ("accum", b.accum.into()),
             ],
             bytemuck::bytes_of(p),
-            [n.div_ceil(64), 1, 1],
+            [w.div_ceil(64), h, 1],
         )?;
         Ok(())
     }

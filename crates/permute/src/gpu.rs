@@ -12,7 +12,8 @@ pub struct SortInput<'a> {
     pub estimate: &'a Buffer,
     /// The N*N mask ranks.
     pub mask: &'a Buffer,
-    /// One u32 per visible pixel from classify_pixels; `None`: one class per block.
+    /// One u32 per visible pixel from classify_pixels (below 2^26); `None`: one class per
+    /// block.
     pub classes: Option<&'a Buffer>,
     /// One f32 per visible pixel subtracted from the key (history_key's means, NaN for the
     /// class mean in the block); `None`: the raw key.
@@ -26,13 +27,14 @@ pub struct SortInput<'a> {
 }
 
 impl SortInput<'_> {
-    /// The sorting pass's variant for this input.
-    pub fn variant(&self) -> SortVariant {
+    /// The sorting pass's variant for this input and block edge.
+    pub fn variant(&self, block: u32) -> SortVariant {
         SortVariant {
             classes: self.classes.is_some(),
             history: self.history.is_some(),
             pairs: self.pairs,
             skew: self.stats.is_some(),
+            large: SortVariant::large_for(block),
         }
     }
 }
@@ -122,7 +124,7 @@ impl PermutePasses {
         }
         let groups = block_groups(p)?;
         let dev = &self.dev;
-        let pipeline = self.sort.get_or_create(input.variant(), |v| {
+        let pipeline = self.sort.get_or_create(input.variant(p.block), |v| {
             let on = [v.classes, v.history, v.skew];
             let optional = SORT_OPTIONAL.iter().zip(on).filter(|(_, on)| *on);
             let bindings: Vec<Binding> = SORT_BINDINGS
