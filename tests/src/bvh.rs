@@ -64,7 +64,7 @@ fn soup(n: u32) -> Scene {
         camera: None,
         environment: Vec3::ZERO,
         environment_map: None,
-        environment_sampling: true,
+        environment_sampling: blueshift_scene::EnvSampling::Importance,
         lights: vec![],
         warnings: vec![],
     }

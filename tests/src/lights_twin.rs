@@ -80,7 +80,7 @@ fn glsl_lights_match_rust_twins() {
         camera: Some(Camera::framing(&Default::default())),
         environment: Vec3::ZERO,
         environment_map: Some(Arc::new(map.clone())),
-        environment_sampling: true,
+        environment_sampling: blueshift_scene::EnvSampling::Importance,
         lights: lights(),
         warnings: vec![],
     };

@@ -52,7 +52,7 @@ pub(crate) fn scene(
         camera: Some(camera),
         environment,
         environment_map: None,
-        environment_sampling: true,
+        environment_sampling: blueshift_scene::EnvSampling::Importance,
         lights: vec![],
         warnings: vec![],
     }

@@ -1,6 +1,6 @@
 //! `--environment` and friends: how a scene is lit beyond its own emitters and lights.
 use anyhow::{Context, Result, bail};
-use blueshift_scene::{EnvMap, EnvironmentSource, Scene};
+use blueshift_scene::{EnvMap, EnvSampling, EnvironmentSource, Scene};
 use glam::Vec3;
 use std::path::Path;
 use std::sync::Arc;
@@ -29,9 +29,10 @@ pub struct LightArgs {
         allow_negative_numbers = true
     )]
     pub environment_intensity: f32,
-    /// How the map is sampled: importance (next-event estimation by luminance, with MIS) or
-    /// brdf (only rays that leave the scene find it; for comparisons).
-    #[arg(long, default_value = "importance", value_parser = ["importance", "brdf"])]
+    /// How next-event estimation samples the map: importance (by luminance, with MIS),
+    /// uniform (by solid angle, with MIS) or brdf (not at all: only rays that leave the scene
+    /// find it). The last two are for comparisons.
+    #[arg(long, default_value = "importance", value_parser = ["importance", "uniform", "brdf"])]
     pub environment_sampling: String,
 }
 
@@ -73,7 +74,11 @@ impl LightArgs {
         let warning = scene.light_if_dark();
         scene.scale_environment(k);
         scene.rotate_environment(r.to_radians());
-        scene.environment_sampling = self.environment_sampling == "importance";
+        scene.environment_sampling = match self.environment_sampling.as_str() {
+            "uniform" => EnvSampling::Uniform,
+            "brdf" => EnvSampling::Brdf,
+            _ => EnvSampling::Importance,
+        };
         Ok(warning)
     }
 }

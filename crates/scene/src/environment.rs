@@ -22,6 +22,18 @@ use std::path::{Path, PathBuf};
 /// Largest map side accepted (a 16k x 8k map is 2 GiB of texels on the device already).
 pub const MAX_ENV_SIDE: u32 = 16384;
 
+/// How next-event estimation samples an environment map.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EnvSampling {
+    /// By luminance times solid angle, with MIS against BRDF sampling.
+    #[default]
+    Importance,
+    /// By solid angle alone, with MIS (a reference for importance sampling).
+    Uniform,
+    /// Not at all: only rays that leave the scene find the map.
+    Brdf,
+}
+
 /// An equirectangular environment map, intensity applied.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EnvMap {
@@ -194,9 +206,15 @@ impl EnvMap {
             .sum()
     }
 
-    /// The sampling tables.
+    /// The importance-sampling tables.
     pub fn tables(&self) -> EnvTables {
-        EnvTables::new(self)
+        EnvTables::new(self, false)
+    }
+
+    /// The tables for `sampling`: by luminance, or (`EnvSampling::Uniform`) by solid angle
+    /// alone, nearly uniform over the sphere (exactly so per row).
+    pub fn tables_for(&self, sampling: EnvSampling) -> EnvTables {
+        EnvTables::new(self, sampling == EnvSampling::Uniform)
     }
 }
 
@@ -233,7 +251,7 @@ fn cdf(w: &[f64]) -> Vec<f32> {
 }
 
 impl EnvTables {
-    fn new(map: &EnvMap) -> EnvTables {
+    fn new(map: &EnvMap, uniform: bool) -> EnvTables {
         let (w, h) = (map.width as usize, map.height as usize);
         let mut row_weights = Vec::with_capacity(h);
         let mut conditional = Vec::with_capacity(w * h);
@@ -241,7 +259,7 @@ impl EnvTables {
             let s = (std::f64::consts::PI * (j as f64 + 0.5) / h as f64).sin();
             let weights: Vec<f64> = map.texels[j * w..(j + 1) * w]
                 .iter()
-                .map(|&c| luminance(c) as f64 * s)
+                .map(|&c| if uniform { 1.0 } else { luminance(c) as f64 } * s)
                 .collect();
             row_weights.push(weights.iter().sum());
             conditional.extend(cdf(&weights));

@@ -34,7 +34,8 @@ mod scene;
 pub use bvh::Bvh;
 pub use camera::{Camera, CameraBasis};
 pub use environment::{
-    EnvMap, EnvMapError, EnvTables, MAX_ENV_SIDE, env_density, env_direction, env_texel_of, env_uv,
+    EnvMap, EnvMapError, EnvSampling, EnvTables, MAX_ENV_SIDE, env_density, env_direction,
+    env_texel_of, env_uv,
 };
 pub use error::SceneError;
 pub use geometry::Aabb;

@@ -1,7 +1,7 @@
 //! The CPU scene: world-space triangles, materials, textures, camera, environment.
 
 use crate::load::{self, LoadOptions};
-use crate::{Aabb, Camera, EnvMap, PunctualLight, Result, SceneError, gpu};
+use crate::{Aabb, Camera, EnvMap, EnvSampling, PunctualLight, Result, SceneError, gpu};
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -105,8 +105,8 @@ pub struct Scene {
     pub environment: Vec3,
     /// An equirectangular map seen by rays that leave the scene (replaces `environment`).
     pub environment_map: Option<Arc<EnvMap>>,
-    /// Whether next-event estimation samples the map (else only rays that leave find it).
-    pub environment_sampling: bool,
+    /// How next-event estimation samples the map.
+    pub environment_sampling: EnvSampling,
     /// `KHR_lights_punctual` lights.
     pub lights: Vec<PunctualLight>,
     /// One line per kind of unsupported or skipped content (also printed once to stderr).

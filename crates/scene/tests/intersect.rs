@@ -68,7 +68,7 @@ pub fn soup_scene(tris: &[[Vec3; 3]]) -> Scene {
         camera: None,
         environment: Vec3::ZERO,
         environment_map: None,
-        environment_sampling: true,
+        environment_sampling: blueshift_scene::EnvSampling::Importance,
         lights: vec![],
         warnings: vec![],
     }

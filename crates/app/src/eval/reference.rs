@@ -84,7 +84,7 @@ fn key(job: &RefJob, what: &str) -> String {
     // The lighting the flags add (environment, intensity, rotation, the default light).
     let s = job.scene;
     h.update(format!(
-        "{:?}|{:?}|{}",
+        "{:?}|{:?}|{:?}",
         s.environment, s.lights, s.environment_sampling
     ));
     if let Some(m) = &s.environment_map {

@@ -3,7 +3,7 @@
 use super::*;
 use crate::geometry::{luminance, srgb_to_linear};
 use crate::scene::{Scene, Wrap, check_sizes};
-use crate::{Aabb, Bvh, EnvTables, LightKind, Result, intersect};
+use crate::{Aabb, Bvh, EnvSampling, EnvTables, LightKind, Result, intersect};
 use rayon::prelude::*;
 
 /// Everything the GPU needs, ready to upload. Triangle-indexed arrays are in BVH order.
@@ -426,8 +426,9 @@ fn non_triangle_lights(
     let Some(map) = scene.environment_map.as_deref() else {
         return (params, None, -1);
     };
-    let tables = map.tables();
-    let env_light = if scene.environment_sampling && EnvTables::has_light(map) {
+    let tables = map.tables_for(scene.environment_sampling);
+    let sampled = scene.environment_sampling != EnvSampling::Brdf;
+    let env_light = if sampled && EnvTables::has_light(map) {
         let record = LightParams {
             kind: LIGHT_ENVIRONMENT,
             ..LightParams::default()

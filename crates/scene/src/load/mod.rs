@@ -274,7 +274,7 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
         camera,
         environment,
         environment_map: None,
-        environment_sampling: true,
+        environment_sampling: crate::EnvSampling::Importance,
         lights: punctual,
         warnings: ctx.warnings.finish(),
     })
