@@ -171,6 +171,11 @@ impl EnvMap {
         }
     }
 
+    /// Whether any texel emits.
+    pub fn has_light(&self) -> bool {
+        self.texels.iter().any(|&c| luminance(c) > 0.0)
+    }
+
     /// Multiplies every texel by `k`.
     pub fn scale(&mut self, k: f32) {
         for t in &mut self.texels {
@@ -270,11 +275,6 @@ impl EnvTables {
             marginal: cdf(&row_weights),
             conditional,
         }
-    }
-
-    /// Whether the map has any light to sample.
-    pub fn has_light(map: &EnvMap) -> bool {
-        map.texels.iter().any(|&c| luminance(c) > 0.0)
     }
 
     /// Probability of texel `(i, j)` (CPU twin of `env_texel_probability`).

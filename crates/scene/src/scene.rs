@@ -156,10 +156,7 @@ impl Scene {
                 .is_some_and(|m| m.emissive.max_element() > 0.0)
         };
         self.environment.max_element() > 0.0
-            || self
-                .environment_map
-                .as_ref()
-                .is_some_and(|m| m.texels.iter().any(|t| t.max_element() > 0.0))
+            || self.environment_map.as_ref().is_some_and(|m| m.has_light())
             || self.lights.iter().any(|l| l.intensity.max_element() > 0.0)
             || self.triangles.iter().any(|t| emissive(t.material))
     }

@@ -22,9 +22,11 @@
 //! times faster than divergent storage-buffer elements.
 
 mod build;
+mod lights;
 mod texels;
 
 pub use build::{GpuBuffer, SceneGpu};
+pub use lights::EnvGpu;
 pub use texels::*;
 
 use blueshift_layout::{Header, gpu_struct};
