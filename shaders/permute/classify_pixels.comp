@@ -26,8 +26,9 @@ layout(set = 0, binding = 1, scalar) writeonly buffer Classes { uint classes[]; 
 void main() {
     uint B = p.block;
     uint block = gl_GlobalInvocationID.x;
-    if (block >= sort_block_count(p)) return;
-    ivec2 origin = sort_block_origin(p, block);
+    uvec2 area = uvec2(p.width, p.height);
+    if (block >= sort_block_count(p, area)) return;
+    ivec2 origin = sort_block_origin(p, area, block);
     bool valid[64], done[64];
     uint at[64], idx[64], cls[64];
     GBufferTexel g[64];

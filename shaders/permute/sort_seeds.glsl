@@ -2,8 +2,10 @@
 // to the position of the k-th smallest mask value. Ranking is within classes (classify_pixels:
 // surfaces of the block; all 0 for the paper's method): pixels and mask values both sort on
 // (class, key, in-block index), so the k-th pixel and the k-th mask position share a class and
-// ties are deterministic. In place: blocks are disjoint.
-// CPU twin: crates/permute/src/cpu.rs sort_seeds_cpu (which ranks by counting).
+// ties are deterministic. In place: blocks are disjoint. With SORT_RETARGET the seeds go on
+// to their retargeted places in a second buffer instead (the retargeting pass fused in).
+// CPU twins: crates/permute/src/cpu.rs sort_seeds_cpu (which ranks by counting), then
+// retarget_seeds_cpu.
 //
 // Shaped for llvmpipe: one invocation per block (8 blocks per SIMD batch, no barriers), and
 // every per-pixel array is indexed only by compile-time constants, so it lives in registers
@@ -20,6 +22,8 @@
 //   SORT_PAIRS    1: antithetic pairs where SortParams::pairs asks for them; 0: the mask only
 //   SORT_SKEW     1: count skewed classes where SortParams::count_skew asks for it
 //   SORT_SLOTS    16: blocks up to 4x4; 64: up to 8x8
+//   SORT_RETARGET 1: then retarget: mask texels carry D (pack_mask_moves), blocks cover the
+//                 padded screen, whose off-screen pixels keep their place before the move
 // With the first four 0 this is the paper's sorting and nothing else.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
@@ -45,7 +49,12 @@ layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { SortParams p; };
 layout(set = 0, binding = 0, scalar) readonly buffer Estimate { vec4 estimate[]; };  // rgb + sort key
 layout(set = 0, binding = 1, scalar) readonly buffer Mask { uint mask[]; };          // N*N ranks
+#if SORT_RETARGET
+layout(set = 0, binding = 2, scalar) readonly buffer Seeds { uint seeds[]; };        // padded
+layout(set = 0, binding = 6, scalar) writeonly buffer SeedsOut { uint seeds_out[]; };
+#else
 layout(set = 0, binding = 2, scalar) buffer Seeds { uint seeds[]; };                 // padded
+#endif
 #if SORT_CLASSES
 layout(set = 0, binding = 3, scalar) readonly buffer Classes { uint classes[]; };     // W*H
 #endif
@@ -73,6 +82,15 @@ uint64_t slot_key(bool valid, uint cls, uint key, uint s) {
     uint64_t k = (uint64_t(cls) << 38) | (uint64_t(key) << 6);
     return (valid ? k : ~uint64_t(0) << 6) | uint64_t(s);
 }
+
+#if SORT_RETARGET
+// The mask side when retargeting: (class : 25, mask key : 17, slot : 6, D : 16). D rides
+// below the slot, which is unique, so the order is slot_key's; classes below 2^25 here.
+uint64_t mask_slot_key(bool valid, uint cls, uint key, uint s, uint d) {
+    uint64_t k = (uint64_t(cls) << 39) | (uint64_t(key) << 22);
+    return (valid ? k : ~uint64_t(0) << 22) | (uint64_t(s) << 16) | uint64_t(d);
+}
+#endif
 
 #if SORT_PAIRS
 // Thin classes (at most 2 columns or 2 rows of the block; with pairs == 2 every class) rank
@@ -162,8 +180,13 @@ uvec2 count_skewed_classes(bool valid[SORT_SLOTS], uint cls[SORT_SLOTS], float c
 void main() {
     uint B = p.block;
     uint block = gl_GlobalInvocationID.x;
-    if (block >= sort_block_count(p)) return;
-    ivec2 origin = sort_block_origin(p, block);
+#if SORT_RETARGET
+    uvec2 area = uvec2(p.stride, p.padded_height);
+#else
+    uvec2 area = uvec2(p.width, p.height);
+#endif
+    if (block >= sort_block_count(p, area)) return;
+    ivec2 origin = sort_block_origin(p, area, block);
     // Mask coordinates of the block's columns and rows, (origin + d + offset) mod N, stepped
     // from one modulo per block (a vector modulo by a run-time value is scalarised).
     // origin >= -7, so adding 8N keeps the dividend non-negative.
@@ -182,6 +205,10 @@ void main() {
 
     bool valid[SORT_SLOTS];
     uint seed[SORT_SLOTS], cls[SORT_SLOTS], mkey[SORT_SLOTS];
+#if SORT_RETARGET
+    bool moves[SORT_SLOTS];  // on the padded screen: the seed moves (off screen: in place first)
+    uint mdisp[SORT_SLOTS];  // D of the slot's mask texel, two signed bytes
+#endif
     float val[SORT_SLOTS];
 #if SORT_HISTORY
     float hm[SORT_SLOTS];
@@ -194,11 +221,25 @@ void main() {
         uvec2 px = uvec2(clamp(q, ivec2(0), ivec2(p.width - 1u, p.height - 1u))); \
         uint at = px.y * p.width + px.x; \
         val[s] = estimate[at].w; \
-        mkey[s] = mask[mrow[SY(s)] * N + mcol[SX(s)]]; \
-        seed[s] = seeds[px.y * p.stride + px.x]; \
+        LOAD_MASK_SEED(s, q, px, mask[mrow[SY(s)] * N + mcol[SX(s)]]) \
         LOAD_CLASS(s, at) \
         LOAD_HISTORY(s, at) \
     }
+#if SORT_RETARGET
+#define LOAD_MASK_SEED(s, q, px, texel) { \
+        moves[s] = SX(s) < B && SY(s) < B && q.x >= 0 && q.y >= 0 && q.x < int(p.stride) && \
+                   q.y < int(p.padded_height); \
+        uint m = texel; \
+        mkey[s] = m & 0xFFFFu; \
+        mdisp[s] = m >> 16; \
+        uvec2 pp = uvec2(clamp(q, ivec2(0), ivec2(p.stride - 1u, p.padded_height - 1u))); \
+        seed[s] = seeds[pp.y * p.stride + pp.x]; \
+    }
+#else
+#define LOAD_MASK_SEED(s, q, px, texel) \
+        mkey[s] = texel; \
+        seed[s] = seeds[px.y * p.stride + px.x];
+#endif
 #if SORT_CLASSES
 #define LOAD_CLASS(s, at) cls[s] = classes[at];
 #else
@@ -253,24 +294,49 @@ void main() {
     uint64_t lk[SORT_SLOTS], mk[SORT_SLOTS];
 #define KEYS(s) \
     lk[s] = slot_key(valid[s], cls[s], sort_key(key[s]), s); \
-    mk[s] = slot_key(valid[s], cls[s], mkey[s], s);
+    MASK_KEY(s)
+#if SORT_RETARGET
+#define MASK_KEY(s) mk[s] = mask_slot_key(valid[s], cls[s], mkey[s], s, mdisp[s]);
+#else
+#define MASK_KEY(s) mk[s] = slot_key(valid[s], cls[s], mkey[s], s);
+#endif
     SORT_EACH(KEYS)
 #define CE_L(i, j) { uint64_t t = min(lk[i], lk[j]); lk[j] = max(lk[i], lk[j]); lk[i] = t; }
 #define CE_M(i, j) { uint64_t t = min(mk[i], mk[j]); mk[j] = max(mk[i], mk[j]); mk[i] = t; }
     SORT_NETWORK(CE_L)
     SORT_NETWORK(CE_M)
     // Rank r pairs the pixel slot lk[r] with the mask slot mk[r] (valid with valid: both sides
-    // have the same number of valid slots first). Sorted by pixel slot, entry s holds slot s's
-    // destination.
+    // have the same number of valid slots first, and the invalid ones pair in slot order, so
+    // they stay in place). Sorted by pixel slot, entry s holds slot s's destination.
     uint dest[SORT_SLOTS];
+#if SORT_RETARGET
+    // (pixel slot : 6, D : 16, mask slot : 6)
+#define PAIR(s) dest[s] = (uint(lk[s] & 63ul) << 22) | (uint(mk[s] & 0xFFFFul) << 6) | \
+                          uint((mk[s] >> 16) & 63ul);
+#else
 #define PAIR(s) dest[s] = (uint(lk[s] & 63ul) << 6) | uint(mk[s] & 63ul);
+#endif
     SORT_EACH(PAIR)
 #define CE_D(i, j) { uint t = min(dest[i], dest[j]); dest[j] = max(dest[i], dest[j]); dest[i] = t; }
     SORT_NETWORK(CE_D)
+#if SORT_RETARGET
+    // Then the retargeting move t + D, toroidally on the padded screen: |D| < N <= its size, so
+    // t + D + size lies in [0, 3 size) and two conditional subtractions wrap it.
+    ivec2 size = ivec2(p.stride, p.padded_height);
+#define STORE(s) if (moves[s]) { \
+        uint d = dest[s] & 63u; \
+        ivec2 disp = ivec2(int(dest[s] << 18) >> 24, int(dest[s] << 10) >> 24); \
+        ivec2 t = origin + ivec2(d % SORT_ROW, d / SORT_ROW) + disp + size; \
+        t = mix(t, t - size, greaterThanEqual(t, size)); \
+        t = mix(t, t - size, greaterThanEqual(t, size)); \
+        seeds_out[t.y * p.stride + t.x] = seed[s]; \
+    }
+#else
 #define STORE(s) if (valid[s]) { \
         uint d = dest[s] & 63u; \
         uvec2 t = uvec2(origin + ivec2(d % SORT_ROW, d / SORT_ROW)); \
         seeds[t.y * p.stride + t.x] = seed[s]; \
     }
+#endif
     SORT_EACH(STORE)
 }

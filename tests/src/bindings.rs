@@ -38,13 +38,12 @@ fn wrong_binding_number_is_named() {
 #[test]
 fn swapped_pair_is_refused_by_name() {
     let gpu = Gpu::new();
-    let name = "permute/retarget_seeds";
+    let name = "permute/classify_pixels";
     let spirv = blueshift_shaders::require(name).unwrap();
-    let push = size_of::<blueshift_permute::RetargetParams>() as u32;
+    let push = size_of::<blueshift_permute::SortParams>() as u32;
     let swapped = [
-        Binding::storage(0, "table"),
-        Binding::storage(1, "seeds_out"),
-        Binding::storage(2, "seeds_in"),
+        Binding::storage(0, "classes"),
+        Binding::storage(1, "gbuffer"),
     ];
     let e = match ComputePipeline::new(gpu.dev(), name, &spirv, &swapped, push) {
         Ok(_) => panic!("a swapped pair was accepted"),
@@ -52,16 +51,15 @@ fn swapped_pair_is_refused_by_name() {
     };
     let msg = e.to_string();
     assert!(
-        matches!(e, DeviceError::BindingMismatch { binding: 1, .. }),
+        matches!(e, DeviceError::BindingMismatch { binding: 0, .. }),
         "{msg}"
     );
-    for part in [name, "binding 1", "'seeds_in'", "'seeds_out'"] {
+    for part in [name, "binding 0", "'gbuffer'", "'classes'"] {
         assert!(msg.contains(part), "{part} missing from: {msg}");
     }
     let right = [
-        Binding::storage(0, "table"),
-        Binding::storage(1, "seeds_in"),
-        Binding::storage(2, "seeds_out"),
+        Binding::storage(0, "gbuffer"),
+        Binding::storage(1, "classes"),
     ];
     assert!(ComputePipeline::new(gpu.dev(), name, &spirv, &right, push).is_ok());
 }

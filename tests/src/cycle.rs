@@ -87,6 +87,7 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
                 history: None,
                 pairs: false,
                 stats: None,
+                retarget: None,
             };
             permute.sort_seeds(rec, &sp, &input, &seeds).unwrap();
             rec.submit_and_wait().unwrap();

@@ -118,6 +118,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
                         history: Some(&history_b),
                         pairs: true,
                         stats: Some(&stats_b),
+                        retarget: None,
                     },
                     &seeds,
                 )

@@ -13,7 +13,6 @@ pub fn all() -> Vec<(&'static str, String)> {
             "params",
             Header::new()
                 .push::<params::SortParams>()
-                .push::<params::RetargetParams>()
                 .push::<params::CycleParams>()
                 .push::<params::TraceParams>()
                 .push::<params::ImageParams>()

@@ -10,6 +10,9 @@ gpu_struct! {
         pub height: u32,
         /// Row stride of the seed buffer (screen width padded to a multiple of the mask size).
         pub stride: u32,
+        /// Rows of the seed buffer (screen height padded likewise): the sorting pass that also
+        /// retargets moves the padded pixels too.
+        pub padded_height: u32,
         /// Block edge B (2..=8).
         pub block: u32,
         /// Mask tile edge N.
@@ -68,19 +71,6 @@ pub const CYCLE_FRAMES: u32 = 16;
 /// cannot cancel a heavy tail (docs/algorithm.md, "pairs=adaptive").
 pub const SKEW_MIN_PIXELS: u32 = 8;
 pub const SKEW_LIMIT: f32 = 2.0;
-
-gpu_struct! {
-    /// Push constants of `permute/retarget_seeds` (one invocation per padded pixel).
-    pub struct RetargetParams {
-        /// Padded screen size (multiples of the mask size).
-        pub padded_width: u32,
-        pub padded_height: u32,
-        pub mask_size: u32,
-        /// Mask offset of the frame the seeds were sorted for.
-        pub offset_x: u32,
-        pub offset_y: u32,
-    }
-}
 
 gpu_struct! {
     /// Push constants of `trace/trace` (124 bytes: fits the 128-byte minimum limit).

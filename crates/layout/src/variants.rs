@@ -143,6 +143,9 @@ pub struct SortVariant {
     /// Blocks up to 8x8 (64 slots per block); otherwise up to 4x4 (16 slots), whose sorting
     /// networks are a tenth of the size.
     pub large: bool,
+    /// Retarget on the way out (`seeds_out` binding, mask texels packed with D): the
+    /// retargeting pass fused into the sort, saving a pass over every seed.
+    pub retarget: bool,
 }
 
 impl SortVariant {
@@ -153,6 +156,7 @@ impl SortVariant {
         pairs: false,
         skew: false,
         large: false,
+        retarget: false,
     };
 
     /// `permute/sort_seeds` for the paper (blocks up to 4x4), else with a suffix per
@@ -160,12 +164,13 @@ impl SortVariant {
     pub fn shader(self) -> String {
         let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
         format!(
-            "permute/sort_seeds{}{}{}{}{}",
+            "permute/sort_seeds{}{}{}{}{}{}",
             flag(self.classes, "_classes"),
             flag(self.history, "_history"),
             flag(self.pairs, "_pairs"),
             flag(self.skew, "_skew"),
             flag(self.large, "_64"),
+            flag(self.retarget, "_retarget"),
         )
     }
 
@@ -188,20 +193,24 @@ impl SortVariant {
                     "SORT_SLOTS",
                     if self.large { "64" } else { "16" }.to_string(),
                 ),
+                ("SORT_RETARGET", bit(self.retarget)),
             ],
         }
     }
 
-    /// Every combination: 32 shaders.
+    /// Every combination a method can ask for: 40 shaders (retargeting never meets pairs or
+    /// skew counts, which belong to the moving grid).
     pub fn all() -> Vec<SortVariant> {
-        (0..32u32)
+        (0..64u32)
             .map(|b| SortVariant {
                 classes: b & 1 != 0,
                 history: b & 2 != 0,
                 pairs: b & 4 != 0,
                 skew: b & 8 != 0,
                 large: b & 16 != 0,
+                retarget: b & 32 != 0,
             })
+            .filter(|v| !(v.retarget && (v.pairs || v.skew)))
             .collect()
     }
 }

@@ -1,8 +1,8 @@
-//! CPU twins of `shaders/permute/sort_seeds.glsl` and `retarget_seeds.comp`. Same inputs,
-//! same arithmetic (integer ranks, over keys from the same float operations in the same
+//! CPU twins of `shaders/permute/sort_seeds.glsl`: sorting, and the retargeting that its
+//! `SORT_RETARGET` variant applies on the way out. Same inputs, same arithmetic (integer ranks, over keys from the same float operations in the same
 //! order), so the GPU must agree exactly.
 use crate::skew::count_skewed_classes;
-use crate::{RetargetParams, SortParams};
+use crate::{PermuteError, Result, SortParams};
 
 /// Sort key of a float (a luminance, or a signed error for history keys): a u32 that orders
 /// like the value, so ranking is exact. Positive floats set the top bit over their bit
@@ -165,10 +165,11 @@ fn pair_thin_classes(
         .collect()
 }
 
-/// Retargeting pass: the seed at padded pixel x moves to x + D((x + o) mod N), toroidally
-/// on the padded screen. `table` holds D as (dx, dy) per mask texel, row-major.
-pub fn retarget_seeds_cpu(p: &RetargetParams, table: &[[i32; 2]], seeds_in: &[u32]) -> Vec<u32> {
-    let (w, h, n) = (p.padded_width as i64, p.padded_height as i64, p.mask_size);
+/// Retargeting: the seed at padded pixel x moves to x + D((x + o) mod N), toroidally on the
+/// padded screen (`stride` x `padded_height`), o the sorting's mask offset. `table` holds D as
+/// (dx, dy) per mask texel, row-major. A bijection because the padded screen tiles the mask.
+pub fn retarget_seeds_cpu(p: &SortParams, table: &[[i32; 2]], seeds_in: &[u32]) -> Vec<u32> {
+    let (w, h, n) = (p.stride as i64, p.padded_height as i64, p.mask_size);
     let mut out = vec![0u32; seeds_in.len()];
     for y in 0..h {
         for x in 0..w {
@@ -179,6 +180,32 @@ pub fn retarget_seeds_cpu(p: &RetargetParams, table: &[[i32; 2]], seeds_in: &[u3
         }
     }
     out
+}
+
+/// The mask the sorting pass reads when it also retargets: per texel the rank in the low 16
+/// bits, then D as two signed bytes (dx, dy), so the displacement of a seed's destination
+/// comes with the mask value the seed was ranked against, without a load of its own.
+pub fn pack_mask_moves(mask: &[u32], table: &[[i32; 2]]) -> Result<Vec<u32>> {
+    if mask.len() != table.len() {
+        return Err(PermuteError::Invalid(format!(
+            "mask of {} texels and retarget table of {} differ in size",
+            mask.len(),
+            table.len()
+        )));
+    }
+    let byte = |d: i32| u8::try_from(d + 128).map(|b| u32::from(b ^ 0x80));
+    mask.iter()
+        .zip(table)
+        .map(
+            |(&rank, &[dx, dy])| match (rank < 0x1_0000, byte(dx), byte(dy)) {
+                (true, Ok(x), Ok(y)) => Ok(rank | x << 16 | y << 24),
+                _ => Err(PermuteError::Invalid(format!(
+                    "mask rank {rank} or displacement ({dx}, {dy}) does not pack into 32 bits \
+                 (ranks below 65536, displacements within -128..=127)"
+                ))),
+            },
+        )
+        .collect()
 }
 
 #[cfg(test)]
@@ -313,7 +340,7 @@ mod tests {
     fn retargeting_with_the_identity_table_is_the_identity() {
         let sc = Screen::new(20, 9, 8).unwrap();
         let init: Vec<u32> = (0..sc.seed_count() as u32).collect();
-        let out = retarget_seeds_cpu(&sc.retarget_params((3, 4)), &[[0, 0]; 64], &init);
+        let out = retarget_seeds_cpu(&sc.sort_params(2, (3, 4)).unwrap(), &[[0, 0]; 64], &init);
         assert_eq!(out, init);
     }
 

@@ -1,6 +1,6 @@
-//! The GPU passes: `permute/classify_pixels`, `permute/sort_seeds` and
-//! `permute/retarget_seeds` (seed reprojection: reproject_gpu.rs).
-use crate::{PermuteError, Result, RetargetParams, SortParams};
+//! The GPU passes: `permute/classify_pixels` and `permute/sort_seeds`, which also retargets
+//! (seed reprojection: reproject_gpu.rs).
+use crate::{PermuteError, Result, SortParams};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, PipelineCache, Recorder, Res};
 pub use blueshift_layout::variants::SortVariant;
 
@@ -10,7 +10,8 @@ pub use blueshift_layout::variants::SortVariant;
 pub struct SortInput<'a> {
     /// vec4 (rgb, sorting key) per visible pixel.
     pub estimate: &'a Buffer,
-    /// The N*N mask ranks.
+    /// The N*N mask ranks; when retargeting, packed with the displacements
+    /// (`pack_mask_moves`).
     pub mask: &'a Buffer,
     /// One u32 per visible pixel from classify_pixels (below 2^26); `None`: one class per
     /// block.
@@ -24,6 +25,9 @@ pub struct SortInput<'a> {
     /// `SortParams::count_skew` is set; the caller zeroes them (`sort_seeds_cpu` returns the
     /// same counts). `None`: no counting.
     pub stats: Option<&'a Buffer>,
+    /// Retarget as well, into this buffer (padded like the seeds; every seed is written);
+    /// `None`: sort in place.
+    pub retarget: Option<&'a Buffer>,
 }
 
 impl SortInput<'_> {
@@ -35,6 +39,7 @@ impl SortInput<'_> {
             pairs: self.pairs,
             skew: self.stats.is_some(),
             large: SortVariant::large_for(block),
+            retarget: self.retarget.is_some(),
         }
     }
 }
@@ -45,20 +50,21 @@ const SORT_BINDINGS: [Binding; 3] = [
     Binding::storage(1, "mask"),
     Binding::storage(2, "seeds"),
 ];
-/// Bindings of the extensions, in the order of `SortInput`'s classes, history and stats.
-const SORT_OPTIONAL: [Binding; 3] = [
+/// Bindings of the extensions, in the order of `SortInput`'s classes, history, stats and
+/// retarget.
+const SORT_OPTIONAL: [Binding; 4] = [
     Binding::storage(3, "classes"),
     Binding::storage(4, "hist_mean"),
     Binding::storage(5, "sort_stats"),
+    Binding::storage(6, "seeds_out"),
 ];
 
-/// Pipelines of both permutation passes.
+/// Pipelines of the permutation passes.
 pub struct PermutePasses {
     dev: Device,
     classify: ComputePipeline,
     /// Sorting-pass variants created so far.
     sort: PipelineCache<SortVariant>,
-    retarget: ComputePipeline,
 }
 
 impl std::fmt::Debug for PermutePasses {
@@ -87,25 +93,15 @@ impl PermutePasses {
             ],
             std::mem::size_of::<SortParams>(),
         )?;
-        let retarget = pipeline(
-            dev,
-            "permute/retarget_seeds",
-            &[
-                Binding::storage(0, "table"),
-                Binding::storage(1, "seeds_in"),
-                Binding::storage(2, "seeds_out"),
-            ],
-            std::mem::size_of::<RetargetParams>(),
-        )?;
         Ok(Self {
             dev: dev.clone(),
             classify,
             sort: PipelineCache::default(),
-            retarget,
         })
     }
 
-    /// Records the sorting pass (in place on `seeds`), in the variant `input` asks for.
+    /// Records the sorting pass (in place on `seeds`, or retargeted into `input.retarget`),
+    /// in the variant `input` asks for.
     pub fn sort_seeds(
         &mut self,
         rec: &mut Recorder,
@@ -118,14 +114,18 @@ impl PermutePasses {
             ("mask", input.mask.into()),
             ("seeds", seeds.into()),
         ];
-        let optional = [input.classes, input.history, input.stats];
+        let optional = [input.classes, input.history, input.stats, input.retarget];
         for (b, buffer) in SORT_OPTIONAL.iter().zip(optional) {
             resources.extend(buffer.map(|buf| (b.name, buf.into())));
         }
-        let groups = block_groups(p)?;
+        let area = match input.retarget {
+            Some(_) => (p.stride, p.padded_height),
+            None => (p.width, p.height),
+        };
+        let groups = block_groups(p, area)?;
         let dev = &self.dev;
         let pipeline = self.sort.get_or_create(input.variant(p.block), |v| {
-            let on = [v.classes, v.history, v.skew];
+            let on = [v.classes, v.history, v.skew, v.retarget];
             let optional = SORT_OPTIONAL.iter().zip(on).filter(|(_, on)| *on);
             let bindings: Vec<Binding> = SORT_BINDINGS
                 .into_iter()
@@ -155,41 +155,22 @@ impl PermutePasses {
             &self.classify,
             &[("gbuffer", gbuffer.into()), ("classes", classes.into())],
             bytemuck::bytes_of(p),
-            block_groups(p)?,
-        )?;
-        Ok(())
-    }
-
-    /// Records the retargeting pass from `seeds_in` to `seeds_out`. `table` holds ivec2 D.
-    pub fn retarget_seeds(
-        &self,
-        rec: &mut Recorder,
-        p: &RetargetParams,
-        table: &Buffer,
-        seeds_in: &Buffer,
-        seeds_out: &Buffer,
-    ) -> Result<()> {
-        let groups = [p.padded_width.div_ceil(8), p.padded_height.div_ceil(8), 1];
-        rec.dispatch(
-            &self.retarget,
-            &[
-                ("table", table.into()),
-                ("seeds_in", seeds_in.into()),
-                ("seeds_out", seeds_out.into()),
-            ],
-            bytemuck::bytes_of(p),
-            groups,
+            block_groups(p, (p.width, p.height))?,
         )?;
         Ok(())
     }
 }
 
-/// One invocation per block (64 per workgroup).
-fn block_groups(p: &SortParams) -> Result<[u32; 3]> {
+/// One invocation per block (64 per workgroup) over `area` (the screen or the padded screen).
+fn block_groups(p: &SortParams, area: (u32, u32)) -> Result<[u32; 3]> {
     if !(2..=8).contains(&p.block) {
         return Err(PermuteError::BlockSize(p.block));
     }
-    let (bx, by) = crate::block_counts(p);
+    let (bx, by) = crate::block_counts(&SortParams {
+        width: area.0,
+        height: area.1,
+        ..*p
+    });
     let blocks = bx * by;
     Ok([blocks.div_ceil(64), 1, 1])
 }

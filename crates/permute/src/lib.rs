@@ -20,8 +20,8 @@ mod similar;
 mod skew;
 
 pub use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
-pub use blueshift_layout::params::{RetargetParams, SortParams};
-pub use cpu::{retarget_seeds_cpu, sort_key, sort_seeds_cpu};
+pub use blueshift_layout::params::SortParams;
+pub use cpu::{pack_mask_moves, retarget_seeds_cpu, sort_key, sort_seeds_cpu};
 pub use cycle::{CYCLE_FRAMES, CycleBuffers, CycleOutput, CycleParams, CyclePass, cycle_keys_cpu};
 pub use edges::classify_pixels_cpu;
 pub use gpu::{PermutePasses, SortInput, SortVariant};
@@ -99,6 +99,7 @@ impl Screen {
             width: self.width,
             height: self.height,
             stride: self.stride(),
+            padded_height: self.padded_height(),
             block,
             mask_size: self.tile,
             offset_x: offset.0,
@@ -109,15 +110,6 @@ impl Screen {
             phase: 0,
             count_skew: 0,
         })
-    }
-    pub fn retarget_params(&self, offset: (u32, u32)) -> RetargetParams {
-        RetargetParams {
-            padded_width: self.stride(),
-            padded_height: self.padded_height(),
-            mask_size: self.tile,
-            offset_x: offset.0,
-            offset_y: offset.1,
-        }
     }
 }
 

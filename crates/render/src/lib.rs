@@ -1,5 +1,5 @@
 //! The frame loop a host application drives frame by frame:
-//! `trace -> sort_seeds -> retarget_seeds -> accumulate -> tonemap`, one submission per frame,
+//! `trace -> sort_seeds (retargeting on the way out) -> accumulate -> tonemap`, one submission per frame,
 //! with GPU timestamps per pass. The seed buffer is a permutation at every moment.
 //!
 //! ```no_run
@@ -58,7 +58,7 @@ use seeds::{key_words, seeds_of};
 
 /// Timing labels of every pass a permutation method adds to the path tracer, in frame order:
 /// their sum against `trace` is the method's overhead.
-pub const PERMUTE_PASSES: [&str; 8] = [
+pub const PERMUTE_PASSES: [&str; 7] = [
     "gbuffer",
     "reproject_motion",
     "reproject_seeds",
@@ -66,7 +66,6 @@ pub const PERMUTE_PASSES: [&str; 8] = [
     "classify_pixels",
     "cycle_keys",
     "sort_seeds",
-    "retarget_seeds",
 ];
 
 /// The renderer: scene on the device, seed buffers, images, passes.
@@ -96,7 +95,8 @@ pub struct Renderer {
     stbn: Buffer,
     /// The FAST mask, when the asset exists.
     fast: Option<Buffer>,
-    table: Buffer,
+    /// The mask packed with the retarget table (`pack_mask_moves`), for sorting that retargets.
+    mask_moves: Buffer,
     assets: MethodAssets,
     camera: Camera,
     view_offset: (f32, f32),
@@ -173,7 +173,11 @@ impl Renderer {
             } else {
                 Some(Buffer::from_slice(dev, "assets.fast", &assets.fast)?)
             },
-            table: Buffer::from_slice(dev, "assets.retarget", &assets.table)?,
+            mask_moves: Buffer::from_slice(
+                dev,
+                "assets.mask_moves",
+                &blueshift_permute::pack_mask_moves(&assets.mask, &assets.table)?,
+            )?,
             assets: assets.clone(),
             camera: scene.camera_or_default(),
             view_offset: (0.0, 0.0),
@@ -340,6 +344,7 @@ impl Renderer {
                     c.record(&mut self.rec, &cp, est, seeds, &self.stbn, &self.accum)?;
                     (&c.keys, &c.mask)
                 }
+                None if m.retargets() => (&self.estimate, &self.mask_moves),
                 None => (&self.estimate, &self.mask),
             };
             self.rec.begin_pass("sort_seeds")?;
@@ -353,20 +358,10 @@ impl Renderer {
                     .filter(|_| m.history_keys()),
                 pairs: m.permutation().is_some_and(|p| p.pairs != Pairs::Off),
                 stats: m.adapts_pairs().then_some(&self.sort_stats),
+                retarget: m.retargets().then_some(&self.seeds[next]),
             };
             self.permute
                 .sort_seeds(&mut self.rec, &sp, &input, &self.seeds[cur])?;
-        }
-        if m.retargets() {
-            self.rec.begin_pass("retarget_seeds")?;
-            let rp = self.screen.retarget_params(off);
-            self.permute.retarget_seeds(
-                &mut self.rec,
-                &rp,
-                &self.table,
-                &self.seeds[cur],
-                &self.seeds[next],
-            )?;
         }
         self.rec.begin_pass("accumulate")?;
         self.image

@@ -7,26 +7,18 @@ struct SortParams {
     uint width; // offset 0, size 4
     uint height; // offset 4, size 4
     uint stride; // offset 8, size 4
-    uint block; // offset 12, size 4
-    uint mask_size; // offset 16, size 4
-    uint offset_x; // offset 20, size 4
-    uint offset_y; // offset 24, size 4
-    uint grid_x; // offset 28, size 4
-    uint grid_y; // offset 32, size 4
-    uint pairs; // offset 36, size 4
-    uint phase; // offset 40, size 4
-    uint count_skew; // offset 44, size 4
+    uint padded_height; // offset 12, size 4
+    uint block; // offset 16, size 4
+    uint mask_size; // offset 20, size 4
+    uint offset_x; // offset 24, size 4
+    uint offset_y; // offset 28, size 4
+    uint grid_x; // offset 32, size 4
+    uint grid_y; // offset 36, size 4
+    uint pairs; // offset 40, size 4
+    uint phase; // offset 44, size 4
+    uint count_skew; // offset 48, size 4
 };
-const uint SORT_PARAMS_SIZE = 48;
-
-struct RetargetParams {
-    uint padded_width; // offset 0, size 4
-    uint padded_height; // offset 4, size 4
-    uint mask_size; // offset 8, size 4
-    uint offset_x; // offset 12, size 4
-    uint offset_y; // offset 16, size 4
-};
-const uint RETARGET_PARAMS_SIZE = 20;
+const uint SORT_PARAMS_SIZE = 52;
 
 struct CycleParams {
     uint width; // offset 0, size 4

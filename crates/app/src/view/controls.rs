@@ -141,7 +141,6 @@ pub fn pass_times(stats: &[FrameStats], present_ms: f64) -> String {
         ("classify_pixels", "classify"),
         ("cycle_keys", "cycle"),
         ("sort_seeds", "sort"),
-        ("retarget_seeds", "retarget"),
         ("accumulate", "accum"),
         ("tonemap", "tonemap"),
     ] {
@@ -243,8 +242,8 @@ mod tests {
             frame: 3,
             passes: [
                 "trace",
+                "classify_pixels",
                 "sort_seeds",
-                "retarget_seeds",
                 "accumulate",
                 "tonemap",
             ]
@@ -266,7 +265,7 @@ mod tests {
         );
         assert!(t.contains("50.0 ms (20.0 fps)"), "{t}");
         assert!(
-            t.contains("trace 4.0 sort 4.0 retarget 4.0 accum 4.0 tonemap 4.0 present 0.3"),
+            t.contains("trace 4.0 classify 4.0 sort 4.0 accum 4.0 tonemap 4.0 present 0.3"),
             "{t}"
         );
         assert!(t.contains("no accumulation"), "{t}");
