@@ -3,7 +3,9 @@
 use crate::GpuOpts;
 use crate::render::{SceneArgs, config, load_assets, load_scene};
 use anyhow::{Result, bail};
-use blueshift_render::{LLVMPIPE_LOOP_LIMIT, LoopStats, RenderConfig, Renderer, TraceLoop};
+use blueshift_render::{
+    CameraPath, LLVMPIPE_LOOP_LIMIT, LoopStats, RenderConfig, Renderer, TraceLoop,
+};
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
@@ -14,6 +16,11 @@ pub struct BenchArgs {
     pub frames: u32,
     #[arg(long, default_value = "white")]
     pub method: String,
+    /// Camera motion over the timed frames, as for `render` (static, pan:PX, orbit:DEG,
+    /// swing:DEG or a keyframe file). A still view lets methods that group by surface reuse
+    /// the G-buffer and classes, so their pass costs differ under motion.
+    #[arg(long, default_value = "static")]
+    pub camera_path: String,
     /// Also render the same frames with the loop-counting shader and print, per loop of the
     /// path tracer, its share of the SIMD batches' iterations and how many lanes were busy
     /// in them (the timings come from the normal shader).
@@ -25,17 +32,28 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     if !(1..=1000).contains(&a.frames) {
         bail!("--frames {} is outside 1..=1000", a.frames);
     }
-    let cfg = config(&a.scene, &a.method)?;
+    let mut cfg = config(&a.scene, &a.method)?;
+    let path = CameraPath::parse(&a.camera_path).map_err(anyhow::Error::msg)?;
+    let (view, base_offset) = path.view_window(a.frames + 1, cfg.width, cfg.height);
+    cfg.view_size = Some(view);
     let scene = load_scene(&a.scene.scene, &a.scene.lights)?;
     let assets = load_assets(&a.scene)?;
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
+    let base = scene.camera_or_default();
+    let move_to = |r: &mut Renderer, f: u32| {
+        r.set_camera(path.camera(&base, f));
+        let o = path.view_offset(f);
+        r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
+    };
+    move_to(&mut r, 0);
     r.render_frame()?; // warm-up: lavapipe compiles the pipeline lazily
     let mut ms: Vec<f64> = Vec::new();
     let mut loop_iterations = 0;
     let mut per_pass = std::collections::BTreeMap::<String, Vec<f64>>::new();
     let cpu0 = process_cpu_seconds();
-    for _ in 0..a.frames {
+    for f in 1..=a.frames {
+        move_to(&mut r, f);
         let s = r.render_frame()?;
         ms.push(s.ms("trace"));
         loop_iterations = loop_iterations.max(s.trace_loop_iterations);
@@ -61,28 +79,36 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     );
     // Medians per pass; each also per pixel and as a share of the trace pass, the measure of
     // what a permutation method costs on top of the path tracing.
-    let medians: Vec<(String, f64)> = per_pass
+    // A pass skipped in some frames (the G-buffer of a still view) counts 0 ms there.
+    let medians: Vec<(String, f64, usize)> = per_pass
         .into_iter()
         .map(|(name, mut v)| {
+            let ran = v.len();
+            v.resize(a.frames as usize, 0.0);
             v.sort_by(f64::total_cmp);
-            (name, v[v.len() / 2])
+            (name, v[v.len() / 2], ran)
         })
         .collect();
     let pixels = cfg.width as f64 * cfg.height as f64;
     let trace = medians
         .iter()
-        .find(|(n, _)| n == "trace")
+        .find(|(n, ..)| n == "trace")
         .map_or(f64::NAN, |p| p.1);
-    for (name, m) in &medians {
+    for (name, m, ran) in &medians {
+        let skipped = if *ran < a.frames as usize {
+            format!(" (ran in {ran} of {} frames)", a.frames)
+        } else {
+            String::new()
+        };
         println!(
-            "  pass {name:<16} median {m:9.3} ms {:8.2} ns/px {:7.2}% of trace",
+            "  pass {name:<16} median {m:9.3} ms {:8.2} ns/px {:7.2}% of trace{skipped}",
             m * 1e6 / pixels,
             100.0 * m / trace
         );
     }
     let permute: f64 = medians
         .iter()
-        .filter(|(n, _)| blueshift_render::PERMUTE_PASSES.contains(&n.as_str()))
+        .filter(|(n, ..)| blueshift_render::PERMUTE_PASSES.contains(&n.as_str()))
         .map(|p| p.1)
         .sum();
     println!(

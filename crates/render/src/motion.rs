@@ -32,6 +32,36 @@ pub(crate) struct MotionState {
     reprojected: bool,
     /// History keys, created when a method first needs them.
     history: Option<HistoryKeys>,
+    /// What the current G-buffer and classes were made from, when no reprojection has
+    /// written a G-buffer since: a frame with the same view and blocks reuses both.
+    classified: Option<ClassInputs>,
+}
+
+/// Everything the `gbuffer` and `classify_pixels` passes read besides the scene: the camera
+/// ray through each pixel centre and the block grid. Equal inputs give equal outputs (both
+/// passes are deterministic), so a still view skips them without changing a bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ClassInputs {
+    camera: [glam::Vec3; 4],
+    view: [glam::Vec2; 2],
+    /// width, height, block, grid x, grid y
+    blocks: [u32; 5],
+}
+
+impl ClassInputs {
+    fn of(tp: &TraceParams, sort: &blueshift_permute::SortParams) -> Self {
+        Self {
+            camera: [tp.cam_origin, tp.cam_forward, tp.cam_right, tp.cam_up],
+            view: [tp.view_offset, tp.view_size],
+            blocks: [
+                sort.width,
+                sort.height,
+                sort.block,
+                sort.grid_x,
+                sort.grid_y,
+            ],
+        }
+    }
 }
 
 impl MotionState {
@@ -53,6 +83,7 @@ impl MotionState {
             last_motion: (0, 0),
             reprojected: false,
             history: None,
+            classified: None,
         })
     }
 
@@ -61,6 +92,7 @@ impl MotionState {
         self.prev = None;
         self.prev_offset = None;
         self.last_motion = (0, 0);
+        self.classified = None;
     }
 
     /// The history means the sorting pass ranks against (history-key methods).
@@ -91,6 +123,7 @@ impl MotionState {
         self.pass
             .gbuffer(rec, tp, scene, images, &self.gbuffers[self.next_g])?;
         self.next_g = 1 - self.next_g;
+        self.classified = None;
         Ok(())
     }
 }
@@ -234,12 +267,17 @@ impl Renderer {
             return Ok(());
         }
         let st = state(&mut self.motion, &self.dev, &self.screen)?;
+        let inputs = ClassInputs::of(tp, sort);
         if !m.reprojects() {
+            if st.classified == Some(inputs) {
+                return Ok(()); // a still view: last frame's G-buffer and classes stand
+            }
             st.record_gbuffer(&mut self.rec, tp, &self.scene, &self.images)?;
         }
         self.rec.begin_pass("classify_pixels")?;
         self.permute
             .classify_pixels(&mut self.rec, sort, st.current_gbuffer(), &st.classes)?;
+        st.classified = (!m.reprojects()).then_some(inputs);
         Ok(())
     }
 }
