@@ -158,3 +158,57 @@ fn sort_cycle_seeds_stay_in_their_blocks() {
     }
     assert_ne!(r.read_seeds().unwrap(), init, "seeds never moved");
 }
+
+/// A still view reuses the G-buffer and the surface classes: after the first frame neither
+/// pass runs, until the camera or the view window moves; then both run and the G-buffer is
+/// the moved camera's (CPU twin).
+#[test]
+fn still_view_reuses_gbuffer_and_classes() {
+    let gpu = Gpu::new();
+    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
+    let sg = blueshift_scene::SceneGpu::build(&s);
+    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
+    let cfg = RenderConfig {
+        bounces: 1,
+        method: Method::SORT_CYCLE,
+        ..RenderConfig::new(29, 19)
+    };
+    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let ran = |r: &mut Renderer| {
+        let names: Vec<String> = r
+            .render_frame()
+            .unwrap()
+            .passes
+            .into_iter()
+            .map(|p| p.name)
+            .collect();
+        let has = |n: &str| names.iter().any(|p| p == n);
+        assert_eq!(has("gbuffer"), has("classify_pixels"), "{names:?}");
+        has("gbuffer")
+    };
+    assert!(ran(&mut r), "the first frame needs a G-buffer");
+    assert!(
+        !ran(&mut r) && !ran(&mut r),
+        "a still view recomputed its G-buffer"
+    );
+    let mut cam = s.camera_or_default();
+    cam.position.x += 0.05;
+    r.set_camera(cam);
+    let tp = r.trace_params();
+    assert!(ran(&mut r), "a moved camera kept the old G-buffer");
+    let got = r
+        .read_gbuffer()
+        .unwrap()
+        .expect("sort-cycle has a G-buffer");
+    let want = blueshift_render::gbuffer_cpu(&sg, &tp);
+    let same = got
+        .iter()
+        .zip(&want)
+        .filter(|(g, c)| g.material == c.material)
+        .count();
+    // Materials agree exactly (the traversal is bit-exact; tests/src/motion.rs checks the rest).
+    assert_eq!(same, want.len());
+    assert!(!ran(&mut r));
+    r.set_view_offset((0.5, 0.0));
+    assert!(ran(&mut r), "a moved view window kept the old G-buffer");
+}
