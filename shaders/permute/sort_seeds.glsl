@@ -4,8 +4,10 @@
 // (class, key, in-block index), so the k-th pixel and the k-th mask position share a class and
 // ties are deterministic. In place: blocks are disjoint. With SORT_RETARGET the seeds go on
 // to their retargeted places in a second buffer instead (the retargeting pass fused in).
-// CPU twins: crates/permute/src/cpu.rs sort_seeds_cpu (which ranks by counting), then
-// retarget_seeds_cpu.
+// With SORT_CYCLE it runs sort-cycle's point cycle on the way in (the keys and seeds it ranks
+// are those the block's seeds had one cycle ago).
+// CPU twins: crates/permute/src/cycle.rs cycle_keys_cpu, then crates/permute/src/cpu.rs
+// sort_seeds_cpu (which ranks by counting), then retarget_seeds_cpu.
 //
 // Shaped for llvmpipe: one invocation per block (8 blocks per SIMD batch, no barriers), and
 // every per-pixel array is indexed only by compile-time constants, so it lives in registers
@@ -24,6 +26,9 @@
 //   SORT_SLOTS    16: blocks up to 4x4; 64: up to 8x8
 //   SORT_RETARGET 1: then retarget: mask texels carry D (pack_mask_moves), blocks cover the
 //                 padded screen, whose off-screen pixels keep their place before the move
+//   SORT_CYCLE    1: first the point cycle: record each pixel's (seed, key minus running
+//                 mean) in the slot of this frame's phase, then rank the seeds and keys of the
+//                 next phase's slot (once written) against mask slice SortParams::mask_layer
 // With the first four 0 this is the paper's sorting and nothing else.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
@@ -66,6 +71,12 @@ layout(set = 0, binding = 4, scalar) readonly buffer History { float hist_mean[]
 // (skewed classes, classes counted), summed over blocks with SortParams::count_skew
 // (count_skewed_classes); zeroed by the host.
 layout(set = 0, binding = 5, scalar) buffer Stats { uint sort_stats[2]; };
+#endif
+#if SORT_CYCLE
+// (seed, key bits) per phase slot and visible pixel: CYCLE_FRAMES * width * height.
+layout(set = 0, binding = 7, scalar) buffer CycleHistory { uvec2 cycle_history[]; };
+// The running mean of the earlier frames (accumulate), vec4 per visible pixel.
+layout(set = 0, binding = 8, scalar) readonly buffer Accum { vec4 accum[]; };
 #endif
 
 // Orders like the float (CPU twin: sort_key): positives over 0x80000000, negatives inverted,
@@ -191,6 +202,7 @@ void main() {
     // from one modulo per block (a vector modulo by a run-time value is scalarised).
     // origin >= -7, so adding 8N keeps the dividend non-negative.
     uint N = p.mask_size;
+    uint mbase = p.mask_layer * N * N;  // the mask slice (0 but for spatio-temporal masks)
     ivec2 o = origin + ivec2(p.offset_x, p.offset_y) + 8 * int(N);
     uint mcol[SORT_ROW], mrow[SORT_ROW];
     mcol[0] = uint(o.x) % N;
@@ -221,7 +233,8 @@ void main() {
         uvec2 px = uvec2(clamp(q, ivec2(0), ivec2(p.width - 1u, p.height - 1u))); \
         uint at = px.y * p.width + px.x; \
         val[s] = estimate[at].w; \
-        LOAD_MASK_SEED(s, q, px, mask[mrow[SY(s)] * N + mcol[SX(s)]]) \
+        LOAD_MASK_SEED(s, q, px, mask[mbase + mrow[SY(s)] * N + mcol[SX(s)]]) \
+        LOAD_CYCLE(s, at) \
         LOAD_CLASS(s, at) \
         LOAD_HISTORY(s, at) \
     }
@@ -239,6 +252,21 @@ void main() {
 #define LOAD_MASK_SEED(s, q, px, texel) \
         mkey[s] = texel; \
         seed[s] = seeds[px.y * p.stride + px.x];
+#endif
+#if SORT_CYCLE
+    uint pixels = p.width * p.height;
+#define LOAD_CYCLE(s, at) { \
+        float k = p.cycle_mean_count > 0u ? val[s] - accum[at].w : val[s]; \
+        if (valid[s]) cycle_history[p.cycle_phase * pixels + at] = uvec2(seed[s], floatBitsToUint(k)); \
+        if (p.cycle_next_valid != 0u) { \
+            uvec2 h = cycle_history[p.cycle_next_phase * pixels + at]; \
+            seed[s] = h.x; \
+            k = uintBitsToFloat(h.y); \
+        } \
+        val[s] = k; \
+    }
+#else
+#define LOAD_CYCLE(s, at)
 #endif
 #if SORT_CLASSES
 #define LOAD_CLASS(s, at) cls[s] = classes[at];

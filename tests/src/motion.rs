@@ -119,6 +119,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
                         pairs: true,
                         stats: Some(&stats_b),
                         retarget: None,
+                        cycle: None,
                     },
                     &seeds,
                 )

@@ -3,8 +3,9 @@
 use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_permute::{
-    PermutePasses, Screen, SortInput, SortParams, SortVariant, is_permutation_of, mask_offset,
-    pack_mask_moves, retarget_seeds_cpu, sort_seeds_cpu,
+    CYCLE_FRAMES, CycleInput, CycleParams, PermutePasses, Screen, SortInput, SortParams,
+    SortVariant, cycle_keys_cpu, is_permutation_of, mask_offset, pack_mask_moves,
+    retarget_seeds_cpu, sort_seeds_cpu, with_cycle,
 };
 
 /// A random tile permutation with displacements <= r: disjoint random swaps within radius.
@@ -80,6 +81,7 @@ fn gpu_sort(
         pairs: retarget.is_none(),
         stats: None,
         retarget,
+        cycle: None,
     };
     let rec = gpu.rec.as_mut().unwrap();
     rec.begin().unwrap();
@@ -300,7 +302,7 @@ fn mask_moves_pack_and_refuse() {
 }
 
 /// Every variant of the sorting pass (`SortVariant`: classes, history, pairs, skew counts,
-/// retargeting, each compiled in or out, for blocks up to 4x4 and up to 8x8) against the CPU
+/// retargeting, the point cycle, each compiled in or out, for blocks up to 4x4 and up to 8x8) against the CPU
 /// twins given the same inputs: an absent class buffer is one class per block, an absent
 /// history the raw key. Classes, NaN histories,
 /// tied keys and a firefly tail in places, on a moving grid with partial blocks.
@@ -338,6 +340,36 @@ fn every_sort_variant_matches_cpu() {
     );
     let classes_b = upload("variant.classes", &classes);
     let history_b = Buffer::from_slice(&dev, "variant.history", &history).unwrap();
+    // The point cycle: a two-slice volume (the mask is slice 1), running means, and a written
+    // next-phase slot holding each pixel's own seed with a random key.
+    let volume: Vec<u32> = rng.perm(n * n).into_iter().chain(mask.clone()).collect();
+    let volume_b = upload("variant.volume", &volume);
+    let means: Vec<f32> = (0..px).map(|_| (rng.next_u32() % 7) as f32 * 0.5).collect();
+    let accum_b = Buffer::from_slice(
+        &dev,
+        "variant.accum",
+        &means.iter().map(|&m| [m; 4]).collect::<Vec<_>>(),
+    )
+    .unwrap();
+    let cp = CycleParams {
+        width: w,
+        height: h,
+        stride: sc.stride(),
+        phase: 3,
+        next_phase: 4,
+        next_valid: 1,
+        mask_size: n,
+        mask_layer: 1,
+        mean_count: 5,
+    };
+    let mut cycle_history = vec![[0u32; 2]; CYCLE_FRAMES as usize * px];
+    for (i, slot) in cycle_history[4 * px..5 * px].iter_mut().enumerate() {
+        let at = (i as u32 / w) * sc.stride() + i as u32 % w;
+        *slot = [
+            init[at as usize],
+            ((rng.next_u32() % 40) as f32 * 0.25).to_bits(),
+        ];
+    }
     let mut checked = 0;
     for (i, v) in SortVariant::all().into_iter().enumerate() {
         // The largest block of each slot count: 8x8 (64 slots) or 4x4 (16).
@@ -349,17 +381,30 @@ fn every_sort_variant_matches_cpu() {
             ..sc.sort_params_on_grid(block, (3, 7), (i as u32 % block, 5 % block))
                 .unwrap()
         };
+        let p = if v.cycle { with_cycle(p, &cp) } else { p };
+        let hist_b = upload(
+            "variant.cycle_history",
+            bytemuck::cast_slice(&cycle_history),
+        );
         let seeds = upload("variant.seeds", &init);
         let out = upload("variant.seeds_out", &vec![0; init.len()]);
         let stats = upload("variant.sort_stats", &[0, 0]);
         let input = SortInput {
             estimate: &est,
-            mask: if v.retarget { &moves_b } else { &mask_b },
+            mask: match (v.retarget, v.cycle) {
+                (true, _) => &moves_b,
+                (_, true) => &volume_b,
+                _ => &mask_b,
+            },
             classes: v.classes.then_some(&classes_b),
             history: v.history.then_some(&history_b),
             pairs: v.pairs,
             stats: v.skew.then_some(&stats),
             retarget: v.retarget.then_some(&out),
+            cycle: v.cycle.then_some(CycleInput {
+                history: &hist_b,
+                accum: &accum_b,
+            }),
         };
         let rec = gpu.rec.as_mut().unwrap();
         rec.begin().unwrap();
@@ -372,7 +417,16 @@ fn every_sort_variant_matches_cpu() {
         let cls = if v.classes { &classes } else { &zeros_u };
         let hist = if v.history { &history } else { &zeros_f };
         let mut cpu = init.clone();
-        let counts = sort_seeds_cpu(&p, &lum, &mask, cls, hist, &mut cpu);
+        let (keys, slice) = if v.cycle {
+            let mut h = cycle_history.clone();
+            let out = cycle_keys_cpu(&cp, &lum, &means, &mut cpu, &mut h, &volume);
+            let got: Vec<[u32; 2]> = hist_b.read().unwrap();
+            assert_eq!(got, h, "{}: history slots", v.shader());
+            (out.keys, out.mask)
+        } else {
+            (lum.clone(), mask.clone())
+        };
+        let counts = sort_seeds_cpu(&p, &keys, &slice, cls, hist, &mut cpu);
         let got = if v.retarget {
             cpu = retarget_seeds_cpu(&p, &table, &cpu);
             out.read::<u32>().unwrap()
@@ -387,5 +441,5 @@ fn every_sort_variant_matches_cpu() {
         }
         checked += 1;
     }
-    assert_eq!(checked, 40);
+    assert_eq!(checked, 48);
 }

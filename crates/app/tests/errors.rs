@@ -285,7 +285,7 @@ fn validation_layers_not_installed() {
 #[test]
 fn device_lost_names_the_pass() {
     let c = Case::new();
-    for pass in ["trace", "cycle_keys"] {
+    for pass in ["trace", "sort_seeds"] {
         let o = c.render(&[], &[("BLUESHIFT_TEST_DEVICE_LOST", pass)]);
         c.expect_error(
             &o,

@@ -13,7 +13,6 @@ pub fn all() -> Vec<(&'static str, String)> {
             "params",
             Header::new()
                 .push::<params::SortParams>()
-                .push::<params::CycleParams>()
                 .push::<params::TraceParams>()
                 .push::<params::ImageParams>()
                 .constant("TRACE_FLAG_SALT_FRAME", params::TRACE_FLAG_SALT_FRAME)

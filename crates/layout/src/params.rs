@@ -34,11 +34,19 @@ gpu_struct! {
         /// 1: add (classes with skewed keys, classes counted) of every block to the stats
         /// buffer (`count_skewed_classes`), for `sort-grid-adaptive`'s choice of pairs.
         pub count_skew: u32,
+        /// The point cycle of `sort-cycle`, for the sorting pass that runs it on the way in
+        /// (`CycleParams` holds the meaning of each): the mask slice of the next frame, the
+        /// phases, whether the next phase's slot is written, frames in the running mean.
+        pub mask_layer: u32,
+        pub cycle_phase: u32,
+        pub cycle_next_phase: u32,
+        pub cycle_next_valid: u32,
+        pub cycle_mean_count: u32,
     }
 }
 
 gpu_struct! {
-    /// Push constants of `permute/cycle_keys` (one invocation per visible pixel).
+    /// The point cycle of `sort-cycle` for one frame (`SortParams::cycle_*` on the GPU).
     pub struct CycleParams {
         pub width: u32,
         pub height: u32,

@@ -146,6 +146,9 @@ pub struct SortVariant {
     /// Retarget on the way out (`seeds_out` binding, mask texels packed with D): the
     /// retargeting pass fused into the sort, saving a pass over every seed.
     pub retarget: bool,
+    /// Run sort-cycle's point cycle on the way in (`cycle_history` and `accum` bindings,
+    /// `SortParams::cycle_*`): the `cycle_keys` pass fused into the sort.
+    pub cycle: bool,
 }
 
 impl SortVariant {
@@ -157,6 +160,7 @@ impl SortVariant {
         skew: false,
         large: false,
         retarget: false,
+        cycle: false,
     };
 
     /// `permute/sort_seeds` for the paper (blocks up to 4x4), else with a suffix per
@@ -164,13 +168,14 @@ impl SortVariant {
     pub fn shader(self) -> String {
         let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
         format!(
-            "permute/sort_seeds{}{}{}{}{}{}",
+            "permute/sort_seeds{}{}{}{}{}{}{}",
             flag(self.classes, "_classes"),
             flag(self.history, "_history"),
             flag(self.pairs, "_pairs"),
             flag(self.skew, "_skew"),
             flag(self.large, "_64"),
             flag(self.retarget, "_retarget"),
+            flag(self.cycle, "_cycle"),
         )
     }
 
@@ -194,14 +199,15 @@ impl SortVariant {
                     if self.large { "64" } else { "16" }.to_string(),
                 ),
                 ("SORT_RETARGET", bit(self.retarget)),
+                ("SORT_CYCLE", bit(self.cycle)),
             ],
         }
     }
 
-    /// Every combination a method can ask for: 40 shaders (retargeting never meets pairs or
-    /// skew counts, which belong to the moving grid).
+    /// Every combination a method can ask for: 48 shaders (retargeting and the point cycle
+    /// never meet pairs, skew counts or each other: pairs belong to the moving grid).
     pub fn all() -> Vec<SortVariant> {
-        (0..64u32)
+        (0..128u32)
             .map(|b| SortVariant {
                 classes: b & 1 != 0,
                 history: b & 2 != 0,
@@ -209,8 +215,10 @@ impl SortVariant {
                 skew: b & 8 != 0,
                 large: b & 16 != 0,
                 retarget: b & 32 != 0,
+                cycle: b & 64 != 0,
             })
-            .filter(|v| !(v.retarget && (v.pairs || v.skew)))
+            .filter(|v| !((v.retarget || v.cycle) && (v.pairs || v.skew)))
+            .filter(|v| !(v.retarget && v.cycle))
             .collect()
     }
 }

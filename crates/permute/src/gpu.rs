@@ -28,6 +28,19 @@ pub struct SortInput<'a> {
     /// Retarget as well, into this buffer (padded like the seeds; every seed is written);
     /// `None`: sort in place.
     pub retarget: Option<&'a Buffer>,
+    /// Run sort-cycle's point cycle first (`SortParams::cycle_*`, `mask` then holds the
+    /// spatio-temporal volume and `mask_layer` picks the slice); `None`: rank this frame's
+    /// keys and seeds.
+    pub cycle: Option<CycleInput<'a>>,
+}
+
+/// The point cycle's buffers (`cycle_keys_cpu` is the twin of what the pass does with them).
+#[derive(Debug, Clone, Copy)]
+pub struct CycleInput<'a> {
+    /// (seed, key bits) per phase slot and visible pixel (`cycle_history_bytes`).
+    pub history: &'a Buffer,
+    /// vec4 per visible pixel: the running mean of the earlier frames.
+    pub accum: &'a Buffer,
 }
 
 impl SortInput<'_> {
@@ -40,6 +53,7 @@ impl SortInput<'_> {
             skew: self.stats.is_some(),
             large: SortVariant::large_for(block),
             retarget: self.retarget.is_some(),
+            cycle: self.cycle.is_some(),
         }
     }
 }
@@ -50,13 +64,15 @@ const SORT_BINDINGS: [Binding; 3] = [
     Binding::storage(1, "mask"),
     Binding::storage(2, "seeds"),
 ];
-/// Bindings of the extensions, in the order of `SortInput`'s classes, history, stats and
-/// retarget.
-const SORT_OPTIONAL: [Binding; 4] = [
+/// Bindings of the extensions, in the order of `SortInput`'s classes, history, stats,
+/// retarget and cycle (two buffers).
+const SORT_OPTIONAL: [Binding; 6] = [
     Binding::storage(3, "classes"),
     Binding::storage(4, "hist_mean"),
     Binding::storage(5, "sort_stats"),
     Binding::storage(6, "seeds_out"),
+    Binding::storage(7, "cycle_history"),
+    Binding::storage(8, "accum"),
 ];
 
 /// Pipelines of the permutation passes.
@@ -114,7 +130,14 @@ impl PermutePasses {
             ("mask", input.mask.into()),
             ("seeds", seeds.into()),
         ];
-        let optional = [input.classes, input.history, input.stats, input.retarget];
+        let optional = [
+            input.classes,
+            input.history,
+            input.stats,
+            input.retarget,
+            input.cycle.map(|c| c.history),
+            input.cycle.map(|c| c.accum),
+        ];
         for (b, buffer) in SORT_OPTIONAL.iter().zip(optional) {
             resources.extend(buffer.map(|buf| (b.name, buf.into())));
         }
@@ -125,7 +148,7 @@ impl PermutePasses {
         let groups = block_groups(p, area)?;
         let dev = &self.dev;
         let pipeline = self.sort.get_or_create(input.variant(p.block), |v| {
-            let on = [v.classes, v.history, v.skew, v.retarget];
+            let on = [v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle];
             let optional = SORT_OPTIONAL.iter().zip(on).filter(|(_, on)| *on);
             let bindings: Vec<Binding> = SORT_BINDINGS
                 .into_iter()

@@ -22,9 +22,11 @@ mod skew;
 pub use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 pub use blueshift_layout::params::SortParams;
 pub use cpu::{pack_mask_moves, retarget_seeds_cpu, sort_key, sort_seeds_cpu};
-pub use cycle::{CYCLE_FRAMES, CycleBuffers, CycleOutput, CycleParams, CyclePass, cycle_keys_cpu};
+pub use cycle::{
+    CYCLE_FRAMES, CycleOutput, CycleParams, cycle_history_bytes, cycle_keys_cpu, with_cycle,
+};
 pub use edges::classify_pixels_cpu;
-pub use gpu::{PermutePasses, SortInput, SortVariant};
+pub use gpu::{CycleInput, PermutePasses, SortInput, SortVariant};
 pub use history::{HistoryKeys, history_key_cpu};
 pub use reproject::{Reprojected, mean_motion, reproject_motion_cpu, reproject_seeds_cpu};
 pub use reproject_gpu::Reprojection;
@@ -109,6 +111,11 @@ impl Screen {
             pairs: 0,
             phase: 0,
             count_skew: 0,
+            mask_layer: 0,
+            cycle_phase: 0,
+            cycle_next_phase: 0,
+            cycle_next_valid: 0,
+            cycle_mean_count: 0,
         })
     }
 }

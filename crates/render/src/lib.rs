@@ -58,13 +58,12 @@ use seeds::{key_words, seeds_of};
 
 /// Timing labels of every pass a permutation method adds to the path tracer, in frame order:
 /// their sum against `trace` is the method's overhead.
-pub const PERMUTE_PASSES: [&str; 7] = [
+pub const PERMUTE_PASSES: [&str; 6] = [
     "gbuffer",
     "reproject_motion",
     "reproject_seeds",
     "history_key",
     "classify_pixels",
-    "cycle_keys",
     "sort_seeds",
 ];
 
@@ -288,12 +287,19 @@ impl Renderer {
             Method::Fast => self.fast.as_ref().ok_or_else(trace_params::no_fast)?,
             _ => &self.mask,
         };
-        if m.cycles_points() && self.cycle.is_none() {
-            let state = cycle::CycleState::new(&self.dev, &self.screen, self.assets.stbn_n)?;
+        let new_cycle = m.cycles_points() && self.cycle.is_none();
+        if new_cycle {
+            let state = cycle::CycleState::new(&self.dev, &self.screen)?;
             self.cycle = Some(state);
         }
         self.rec.begin()?;
         self.rec.fill_buffer(&self.trace_status, 0)?;
+        if let Some(c) = self.cycle.as_ref().filter(|_| new_cycle) {
+            // Touches the whole history now (its contents are never read before written):
+            // on a CPU device the first touch of each page costs a fault, which would
+            // otherwise slow the sorting pass over the whole first cycle.
+            self.rec.fill_buffer(&c.history, 0)?;
+        }
         self.rec.begin_pass("trace")?;
         let per_dispatch = self.trace.trace(
             &mut self.rec,
@@ -322,11 +328,14 @@ impl Renderer {
                     ..self.screen.sort_params_on_grid(block, next, grid)?
                 }
             } else if m.cycles_points() {
-                // Fixed blocks against the next spatio-temporal slice (cycle_keys copies it).
-                SortParams {
-                    mask_size: self.assets.stbn_n,
+                // Fixed blocks against the next spatio-temporal slice, the point cycle first.
+                let (n, t) = (self.assets.stbn_n, self.assets.stbn_frames);
+                let cp = self.screen.cycle_params(self.frame, n, t, self.accumulated);
+                let sp = SortParams {
+                    mask_size: n,
                     ..self.screen.sort_params(block, (0, 0))?
-                }
+                };
+                blueshift_permute::with_cycle(sp, &cp)
             } else {
                 self.screen.sort_params(block, off)?
             };
@@ -335,22 +344,18 @@ impl Renderer {
             if sp.count_skew != 0 {
                 self.rec.fill_buffer(&self.sort_stats, 0)?;
             }
-            let (estimate, mask) = match self.cycle.as_ref().filter(|_| m.cycles_points()) {
-                Some(c) => {
-                    self.rec.begin_pass("cycle_keys")?;
-                    let (n, t) = (self.assets.stbn_n, self.assets.stbn_frames);
-                    let cp = self.screen.cycle_params(self.frame, n, t, self.accumulated);
-                    let (est, seeds) = (&self.estimate, &self.seeds[cur]);
-                    c.record(&mut self.rec, &cp, est, seeds, &self.stbn, &self.accum)?;
-                    (&c.keys, &c.mask)
-                }
-                None if m.retargets() => (&self.estimate, &self.mask_moves),
-                None => (&self.estimate, &self.mask),
+            let cycle = self.cycle.as_ref().filter(|_| m.cycles_points());
+            let mask = if cycle.is_some() {
+                &self.stbn
+            } else if m.retargets() {
+                &self.mask_moves
+            } else {
+                &self.mask
             };
             self.rec.begin_pass("sort_seeds")?;
             let motion = self.motion.as_ref();
             let input = SortInput {
-                estimate,
+                estimate: &self.estimate,
                 mask,
                 classes: motion.filter(|_| m.edge_aware()).map(|st| &st.classes),
                 history: motion
@@ -359,6 +364,10 @@ impl Renderer {
                 pairs: m.permutation().is_some_and(|p| p.pairs != Pairs::Off),
                 stats: m.adapts_pairs().then_some(&self.sort_stats),
                 retarget: m.retargets().then_some(&self.seeds[next]),
+                cycle: cycle.map(|c| blueshift_permute::CycleInput {
+                    history: &c.history,
+                    accum: &self.accum,
+                }),
             };
             self.permute
                 .sort_seeds(&mut self.rec, &sp, &input, &self.seeds[cur])?;

@@ -17,21 +17,13 @@ struct SortParams {
     uint pairs; // offset 40, size 4
     uint phase; // offset 44, size 4
     uint count_skew; // offset 48, size 4
+    uint mask_layer; // offset 52, size 4
+    uint cycle_phase; // offset 56, size 4
+    uint cycle_next_phase; // offset 60, size 4
+    uint cycle_next_valid; // offset 64, size 4
+    uint cycle_mean_count; // offset 68, size 4
 };
-const uint SORT_PARAMS_SIZE = 52;
-
-struct CycleParams {
-    uint width; // offset 0, size 4
-    uint height; // offset 4, size 4
-    uint stride; // offset 8, size 4
-    uint phase; // offset 12, size 4
-    uint next_phase; // offset 16, size 4
-    uint next_valid; // offset 20, size 4
-    uint mask_size; // offset 24, size 4
-    uint mask_layer; // offset 28, size 4
-    uint mean_count; // offset 32, size 4
-};
-const uint CYCLE_PARAMS_SIZE = 36;
+const uint SORT_PARAMS_SIZE = 72;
 
 struct TraceParams {
     vec3 cam_origin; // offset 0, size 12

@@ -139,7 +139,6 @@ pub fn pass_times(stats: &[FrameStats], present_ms: f64) -> String {
         ("trace", "trace"),
         ("history_key", "history"),
         ("classify_pixels", "classify"),
-        ("cycle_keys", "cycle"),
         ("sort_seeds", "sort"),
         ("accumulate", "accum"),
         ("tonemap", "tonemap"),
