@@ -257,7 +257,8 @@ void main() {
     uint pixels = p.width * p.height;
 #define LOAD_CYCLE(s, at) { \
         float k = p.cycle_mean_count > 0u ? val[s] - accum[at].w : val[s]; \
-        if (valid[s]) cycle_history[p.cycle_phase * pixels + at] = uvec2(seed[s], floatBitsToUint(k)); \
+        uvec2 rec = uvec2(seed[s], floatBitsToUint(k)); \
+        if (valid[s]) cycle_history[p.cycle_phase * pixels + at] = rec; \
         if (p.cycle_next_valid != 0u) { \
             uvec2 h = cycle_history[p.cycle_next_phase * pixels + at]; \
             seed[s] = h.x; \

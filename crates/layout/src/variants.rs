@@ -147,7 +147,7 @@ pub struct SortVariant {
     /// retargeting pass fused into the sort, saving a pass over every seed.
     pub retarget: bool,
     /// Run sort-cycle's point cycle on the way in (`cycle_history` and `accum` bindings,
-    /// `SortParams::cycle_*`): the `cycle_keys` pass fused into the sort.
+    /// `SortParams::cycle_*`): the point cycle fused into the sort.
     pub cycle: bool,
 }
 

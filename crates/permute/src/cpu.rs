@@ -1,6 +1,7 @@
 //! CPU twins of `shaders/permute/sort_seeds.glsl`: sorting, and the retargeting that its
-//! `SORT_RETARGET` variant applies on the way out. Same inputs, same arithmetic (integer ranks, over keys from the same float operations in the same
-//! order), so the GPU must agree exactly.
+//! `SORT_RETARGET` variant applies on the way out. Same inputs, same arithmetic (integer
+//! ranks, over keys from the same float operations in the same order), so the GPU must agree
+//! exactly.
 use crate::skew::count_skewed_classes;
 use crate::{PermuteError, Result, SortParams};
 

@@ -43,10 +43,10 @@ pub struct CycleOutput {
     pub mask: Vec<u32>,
 }
 
-/// CPU twin of the point cycle (the sorting pass's `SORT_CYCLE` loads): `keys` is the frame's `estimate.w` per visible pixel, `means` the
-/// running mean's `.w`, `seeds` the padded seed buffer (updated in place), `history` the
-/// `CYCLE_FRAMES * width * height` (seed, key bits) slots (updated in place), `volume` the
-/// spatio-temporal ranks.
+/// CPU twin of the point cycle (the sorting pass's `SORT_CYCLE` loads): `keys` is the frame's
+/// `estimate.w` per visible pixel, `means` the running mean's `.w`, `seeds` the padded seed
+/// buffer (updated in place), `history` the `CYCLE_FRAMES * width * height` (seed, key bits)
+/// slots (updated in place), `volume` the spatio-temporal ranks.
 pub fn cycle_keys_cpu(
     p: &CycleParams,
     keys: &[f32],

@@ -68,10 +68,11 @@ pub enum Points {
     Fixed,
     /// Block-net points (`Sampler::BlockNet`: a block's seeds share one scrambled Sobol
     /// sequence, so at every index they hold a 64-point net) with the index cycling through
-    /// `CYCLE_FRAMES` values (`permute/cycle_keys`); seeds stay in their [`GRID_BLOCK`]-sized
-    /// block and rank by the key they gave one cycle earlier, against spatio-temporal mask
-    /// slices. The block's mean error is small in every frame, its arrangement is blue, and
-    /// the arrangement changes every frame, so a temporal filter averages it out.
+    /// `CYCLE_FRAMES` values (the sorting pass's point cycle); seeds stay in their
+    /// [`GRID_BLOCK`]-sized block and rank by the key they gave one cycle earlier, against
+    /// spatio-temporal mask slices. The block's mean error is small in every frame, its
+    /// arrangement is blue, and the arrangement changes every frame, so a temporal filter
+    /// averages it out.
     Cycle,
 }
 
@@ -242,8 +243,8 @@ impl Method {
         matches!(self, Method::Sobol | Method::Hbo19) || self.cycles_points()
     }
 
-    /// Whether seeds cycle through a fixed set of points (`permute/cycle_keys`): the sample
-    /// index is the frame's phase in the cycle.
+    /// Whether seeds cycle through a fixed set of points (the sorting pass's point cycle): the
+    /// sample index is the frame's phase in the cycle.
     pub fn cycles_points(self) -> bool {
         self.has(|p| p.points == Points::Cycle)
     }
