@@ -194,4 +194,21 @@ fn still_view_reuses_gbuffer_and_classes() {
     assert!(!ran(&mut r));
     r.set_view_offset((0.5, 0.0));
     assert!(ran(&mut r), "a moved view window kept the old G-buffer");
+
+    // Reprojecting methods keep two G-buffers (this frame's and the last): with a still view
+    // each is traced once, then both stand until the camera moves.
+    let cfg = RenderConfig {
+        bounces: 1,
+        method: Method::SORT_GRID_ADAPTIVE,
+        ..RenderConfig::new(29, 19)
+    };
+    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let traced = |r: &mut Renderer| {
+        let stats = r.render_frame().unwrap();
+        stats.passes.iter().any(|p| p.name == "gbuffer")
+    };
+    let still: Vec<bool> = (0..5).map(|_| traced(&mut r)).collect();
+    assert_eq!(still, [true, true, false, false, false]);
+    r.set_camera(cam);
+    assert!(traced(&mut r), "a moved camera kept the old G-buffers");
 }

@@ -32,18 +32,36 @@ pub(crate) struct MotionState {
     reprojected: bool,
     /// History keys, created when a method first needs them.
     history: Option<HistoryKeys>,
+    /// The view each G-buffer was made for: a frame whose view a G-buffer already shows
+    /// takes it instead of tracing it again.
+    gviews: [Option<ViewInputs>; 2],
     /// What the current G-buffer and classes were made from, when no reprojection has
     /// written a G-buffer since: a frame with the same view and blocks reuses both.
     classified: Option<ClassInputs>,
 }
 
-/// Everything the `gbuffer` and `classify_pixels` passes read besides the scene: the camera
-/// ray through each pixel centre and the block grid. Equal inputs give equal outputs (both
-/// passes are deterministic), so a still view skips them without changing a bit.
+/// Everything the `gbuffer` pass reads besides the scene: the camera ray through each pixel
+/// centre. Equal inputs give equal outputs (the passes are deterministic), so a still view
+/// skips the G-buffer, and with the same block grid the classes, without changing a bit.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct ClassInputs {
+struct ViewInputs {
     camera: [glam::Vec3; 4],
     view: [glam::Vec2; 2],
+}
+
+impl ViewInputs {
+    fn of(tp: &TraceParams) -> Self {
+        Self {
+            camera: [tp.cam_origin, tp.cam_forward, tp.cam_right, tp.cam_up],
+            view: [tp.view_offset, tp.view_size],
+        }
+    }
+}
+
+/// The inputs of `classify_pixels`: the G-buffer's view and the block grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ClassInputs {
+    view: ViewInputs,
     /// width, height, block, grid x, grid y
     blocks: [u32; 5],
 }
@@ -51,8 +69,7 @@ struct ClassInputs {
 impl ClassInputs {
     fn of(tp: &TraceParams, sort: &blueshift_permute::SortParams) -> Self {
         Self {
-            camera: [tp.cam_origin, tp.cam_forward, tp.cam_right, tp.cam_up],
-            view: [tp.view_offset, tp.view_size],
+            view: ViewInputs::of(tp),
             blocks: [
                 sort.width,
                 sort.height,
@@ -83,6 +100,7 @@ impl MotionState {
             last_motion: (0, 0),
             reprojected: false,
             history: None,
+            gviews: [None; 2],
             classified: None,
         })
     }
@@ -111,7 +129,7 @@ impl MotionState {
     }
 
     /// Records the `gbuffer` pass for camera `tp` into the next G-buffer, which becomes the
-    /// current one.
+    /// current one; nothing to record when it already shows that view (a still camera).
     fn record_gbuffer(
         &mut self,
         rec: &mut Recorder,
@@ -119,10 +137,14 @@ impl MotionState {
         scene: &SceneBuffers,
         images: &SceneImages,
     ) -> Result<()> {
-        rec.begin_pass("gbuffer")?;
-        self.pass
-            .gbuffer(rec, tp, scene, images, &self.gbuffers[self.next_g])?;
-        self.next_g = 1 - self.next_g;
+        let (slot, view) = (self.next_g, ViewInputs::of(tp));
+        if self.gviews[slot] != Some(view) {
+            rec.begin_pass("gbuffer")?;
+            self.pass
+                .gbuffer(rec, tp, scene, images, &self.gbuffers[slot])?;
+            self.gviews[slot] = Some(view);
+        }
+        self.next_g = 1 - slot;
         self.classified = None;
         Ok(())
     }

@@ -273,6 +273,7 @@ fn run_method(
     let mut merged: Option<RunMetrics> = None;
     let mut p1_per_sequence = Vec::new();
     let mut times: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let mut rendered = 0usize;
     let (mut last_frame, mut last_error) = (Vec::new(), None);
     let (mut flip, mut flip_clean, mut clean_fraction) = (0.0, 0.0, 0.0);
     for seq in 0..args.sequences {
@@ -298,6 +299,7 @@ fn run_method(
             let rf = refs.frame(t, w, h);
             let reference_y = rf.luminance();
             let stats = r.render_frame()?;
+            rendered += 1;
             for p in stats.passes {
                 times.entry(p.name).or_default().push(p.ms);
             }
@@ -334,9 +336,11 @@ fn run_method(
             Some(prev) => metrics::average(prev, m, seq as f64),
         });
     }
+    // A pass a frame skipped (a still view's G-buffer) counts 0 ms in that frame.
     let pass_ms = times
         .into_iter()
         .map(|(k, mut v)| {
+            v.resize(rendered.max(v.len()), 0.0);
             v.sort_by(f64::total_cmp);
             (k, v[v.len() / 2])
         })
