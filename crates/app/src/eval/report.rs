@@ -10,16 +10,9 @@ use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::path::Path;
 
-fn commit() -> String {
-    std::process::Command::new("git")
-        .args(["rev-parse", "--short", "HEAD"])
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map_or_else(
-            || "unknown".into(),
-            |o| String::from_utf8_lossy(&o.stdout).trim().to_string(),
-        )
+/// The commit the binary was built from (build.rs).
+fn commit() -> &'static str {
+    env!("BLUESHIFT_COMMIT")
 }
 
 fn num(v: f64) -> Value {
