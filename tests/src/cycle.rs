@@ -151,12 +151,15 @@ fn still_view_reuses_gbuffer_and_classes() {
     let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let sg = blueshift_scene::SceneGpu::build(&s);
     let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
-    let cfg = RenderConfig {
-        bounces: 1,
-        method: Method::SORT_CYCLE,
-        ..RenderConfig::new(29, 19)
+    let renderer = |method: Method| {
+        let cfg = RenderConfig {
+            bounces: 1,
+            method,
+            ..RenderConfig::new(29, 19)
+        };
+        Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap()
     };
-    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let mut r = renderer(Method::SORT_CYCLE);
     let ran = |r: &mut Renderer| {
         let names: Vec<String> = r
             .render_frame()
@@ -197,12 +200,7 @@ fn still_view_reuses_gbuffer_and_classes() {
 
     // Reprojecting methods keep two G-buffers (this frame's and the last): with a still view
     // each is traced once, then both stand until the camera moves.
-    let cfg = RenderConfig {
-        bounces: 1,
-        method: Method::SORT_GRID_ADAPTIVE,
-        ..RenderConfig::new(29, 19)
-    };
-    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let mut r = renderer(Method::SORT_GRID_ADAPTIVE);
     let traced = |r: &mut Renderer| {
         let stats = r.render_frame().unwrap();
         stats.passes.iter().any(|p| p.name == "gbuffer")
