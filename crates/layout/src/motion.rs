@@ -56,21 +56,25 @@ gpu_struct! {
         pub min_frames: u32,
         /// The mean weighs the newest key by 1 / min(frames, max_frames).
         pub max_frames: u32,
-        /// A pixel ranks against the mean of the histories in its (2 radius + 1)^2 window that
-        /// show its surface (`similar` G-buffer texels): a 3x3 window averages the history's
-        /// own noise down in smooth regions, and over a symmetric window a linear gradient
-        /// averages to its centre value, so only curvature biases it.
-        pub radius: u32,
     }
 }
 
-/// `HistoryParams::min_frames`, `max_frames` and `radius` of `sort-grid-history` (docs/algorithm.md,
+/// `HistoryParams::min_frames` and `max_frames` of `sort-grid-history` (docs/algorithm.md,
 /// "key=history": single-pixel histories of one or two frames made pans worse; with the 3x3
 /// window a minimum of 4 frames beat 8 on pans, a maximum of 16 frames lost to 64 under
 /// rotation, and a 5x5 window gained nothing over 3x3).
+///
+/// A pixel ranks against the mean of the histories in its 3x3 window that show its surface
+/// (`similar` G-buffer texels): the window averages the history's own noise down in smooth
+/// regions, and over a symmetric window a linear gradient averages to its centre value, so
+/// only curvature biases it.
 pub const HISTORY_MIN_FRAMES: u32 = 4;
 pub const HISTORY_MAX_FRAMES: u32 = 64;
-pub const HISTORY_RADIUS: u32 = 1;
+/// Rows of the strip one `history_key` invocation walks down (its window's rows stay in
+/// registers, so each is fetched once per strip rather than once per pixel).
+pub const HISTORY_STRIP: u32 = 16;
+/// Columns of that strip per invocation (the shader's tap rows are unrolled for 4).
+pub const HISTORY_COLUMNS: u32 = 4;
 
 /// "No pixel" in the reprojection buffers.
 pub const REPROJECT_NONE: u32 = 0xffff_ffff;

@@ -5,7 +5,9 @@
 use crate::similar;
 use crate::{Result, Screen};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, MemoryLocation, Recorder};
-use blueshift_layout::motion::{GBufferTexel, HistoryParams, REPROJECT_NONE};
+use blueshift_layout::motion::{
+    GBufferTexel, HISTORY_COLUMNS, HISTORY_STRIP, HistoryParams, REPROJECT_NONE,
+};
 
 /// The pass and the history means (mean key, frames) of the last two frames.
 pub struct HistoryKeys {
@@ -77,7 +79,11 @@ impl HistoryKeys {
                 ("gbuffer", gbuffer.into()),
             ],
             bytemuck::bytes_of(p),
-            [p.width.div_ceil(8), p.height.div_ceil(8), 1],
+            [
+                p.width.div_ceil(64 * HISTORY_COLUMNS),
+                p.height.div_ceil(HISTORY_STRIP),
+                1,
+            ],
         )?;
         self.next = 1 - self.next;
         Ok(())
@@ -123,7 +129,7 @@ pub fn history_key_cpu(
     (out, mean)
 }
 
-/// The mean of the previous histories in (x, y)'s window that show its surface and have at
+/// The mean of the previous histories in (x, y)'s 3x3 window that show its surface and have at
 /// least `min_frames` frames, summed row by row; NaN for none.
 fn window_mean(
     p: &HistoryParams,
@@ -133,7 +139,7 @@ fn window_mean(
     hist: &[[f32; 2]],
     gbuffer: &[GBufferTexel],
 ) -> f32 {
-    let (w, h, r) = (p.width as i64, p.height as i64, p.radius as i64);
+    let (w, h, r) = (p.width as i64, p.height as i64, 1);
     let centre = &gbuffer[(y * p.width + x) as usize];
     let (mut sum, mut count) = (0.0f32, 0.0f32);
     for ny in y as i64 - r..=y as i64 + r {

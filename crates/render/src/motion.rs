@@ -4,8 +4,7 @@
 use crate::{GBufferPass, RenderError, Renderer, Result, SceneBuffers, SceneImages};
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::motion::{
-    GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HISTORY_RADIUS, HistoryParams,
-    MotionParams,
+    GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HistoryParams, MotionParams,
 };
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::{
@@ -257,7 +256,6 @@ impl Renderer {
             has_history: st.reprojected as u32,
             min_frames: HISTORY_MIN_FRAMES,
             max_frames: HISTORY_MAX_FRAMES,
-            radius: HISTORY_RADIUS,
         };
         let h = match &mut st.history {
             Some(h) => h,

@@ -32,14 +32,14 @@ struct HistoryParams {
     uint has_history; // offset 12, size 4
     uint min_frames; // offset 16, size 4
     uint max_frames; // offset 20, size 4
-    uint radius; // offset 24, size 4
 };
-const uint HISTORY_PARAMS_SIZE = 28;
+const uint HISTORY_PARAMS_SIZE = 24;
 
 const uint REPROJECT_NONE = 4294967295u;
 const uint HISTORY_MIN_FRAMES = 4u;
 const uint HISTORY_MAX_FRAMES = 64u;
-const uint HISTORY_RADIUS = 1u;
+const uint HISTORY_STRIP = 16u;
+const uint HISTORY_COLUMNS = 4u;
 const float REPROJECT_TIE_BIAS = 0.00390625;
 const int REPROJECT_MAX_MOTION = 255;
 const float SIMILAR_MIN_COS = 0.9;
