@@ -5,6 +5,7 @@ use crate::{GBufferPass, RenderError, Renderer, Result, SceneBuffers, SceneImage
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::motion::{
     GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HistoryParams, MotionParams,
+    REPROJECT_NONE,
 };
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::{
@@ -37,6 +38,22 @@ pub(crate) struct MotionState {
     /// What the current G-buffer and classes were made from, when no reprojection has
     /// written a G-buffer since: a frame with the same view and blocks reuses both.
     classified: Option<ClassInputs>,
+    /// What the last reprojection was computed from, and once checked, whether its source
+    /// map sends every pixel to itself or nowhere (a still view).
+    reprojection_inputs: Option<(ReprojectionInputs, Option<bool>)>,
+}
+
+/// The inputs of the reprojection passes besides the seeds: the views of the previous and the
+/// current G-buffer and the previous camera. Equal inputs give the same source map (the
+/// `src` buffer, which nothing else writes); if that map sends each pixel to itself or
+/// nowhere, the seed permutation is the identity (every pixel wins its own seed, and the
+/// holes and the unclaimed pixels are the same list), so a still view skips both passes
+/// without changing a bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ReprojectionInputs {
+    previous: Option<ViewInputs>,
+    current: Option<ViewInputs>,
+    camera: ViewInputs,
 }
 
 /// Everything the `gbuffer` pass reads besides the scene: the camera ray through each pixel
@@ -101,6 +118,7 @@ impl MotionState {
             history: None,
             gviews: [None; 2],
             classified: None,
+            reprojection_inputs: None,
         })
     }
 
@@ -146,6 +164,37 @@ impl MotionState {
         self.next_g = 1 - slot;
         self.classified = None;
         Ok(())
+    }
+
+    /// Whether the reprojection from camera `prev` to the current G-buffer would repeat the
+    /// last one and that one moved no seed (see [`ReprojectionInputs`]); otherwise records the
+    /// inputs of the one about to run.
+    fn reprojection_unchanged(&mut self, prev: &TraceParams) -> Result<bool> {
+        let inputs = ReprojectionInputs {
+            previous: self.gviews[self.next_g],
+            current: self.gviews[1 - self.next_g],
+            camera: ViewInputs::of(prev),
+        };
+        let identity = match self.reprojection_inputs {
+            Some((last, known)) if last == inputs => match known {
+                Some(identity) => identity,
+                None => {
+                    // Read once per still view: the last run's map is still in `src`.
+                    let src = self.reprojection.src.read::<u32>()?;
+                    let identity = src
+                        .iter()
+                        .enumerate()
+                        .all(|(q, &s)| s == REPROJECT_NONE || s as usize == q);
+                    self.reprojection_inputs = Some((inputs, Some(identity)));
+                    identity
+                }
+            },
+            _ => {
+                self.reprojection_inputs = Some((inputs, None));
+                false
+            }
+        };
+        Ok(identity)
     }
 }
 
@@ -198,7 +247,13 @@ impl Renderer {
         self.rec.begin()?;
         st.record_gbuffer(&mut self.rec, tp, &self.scene, &self.images)?;
         let reproject = st.prev.is_some();
-        if let Some(prev) = &st.prev {
+        // A still view's repeat of an identity reprojection is skipped: the seeds stay where
+        // they are, `src` and the motion sums keep the last run's (equal) values.
+        let moved = match st.prev {
+            Some(prev) => !st.reprojection_unchanged(&prev)?,
+            None => false,
+        };
+        if let (true, Some(prev)) = (moved, &st.prev) {
             let mp = motion_params(prev, &self.screen);
             self.rec.begin_pass("reproject_motion")?;
             let r = &st.reprojection;
@@ -215,7 +270,7 @@ impl Renderer {
         let times = self.rec.submit_and_wait()?;
         st.prev = Some(*tp);
         st.reprojected = reproject;
-        if reproject {
+        if moved {
             self.current = 1 - self.current;
         }
         if m.shifts_grid() {
