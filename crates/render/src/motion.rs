@@ -44,16 +44,15 @@ pub(crate) struct MotionState {
 }
 
 /// The inputs of the reprojection passes besides the seeds: the views of the previous and the
-/// current G-buffer and the previous camera. Equal inputs give the same source map (the
-/// `src` buffer, which nothing else writes); if that map sends each pixel to itself or
-/// nowhere, the seed permutation is the identity (every pixel wins its own seed, and the
-/// holes and the unclaimed pixels are the same list), so a still view skips both passes
-/// without changing a bit.
+/// current G-buffer (the previous one's is the previous camera, which the passes also read).
+/// Equal inputs give the same source map (the `src` buffer, which nothing else writes); if
+/// that map sends each pixel to itself or nowhere, the seed permutation is the identity
+/// (every pixel wins its own seed, and the holes and the unclaimed pixels are the same list),
+/// so a still view skips both passes without changing a bit.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct ReprojectionInputs {
     previous: Option<ViewInputs>,
     current: Option<ViewInputs>,
-    camera: ViewInputs,
 }
 
 /// Everything the `gbuffer` pass reads besides the scene: the camera ray through each pixel
@@ -166,35 +165,31 @@ impl MotionState {
         Ok(())
     }
 
-    /// Whether the reprojection from camera `prev` to the current G-buffer would repeat the
-    /// last one and that one moved no seed (see [`ReprojectionInputs`]); otherwise records the
-    /// inputs of the one about to run.
-    fn reprojection_unchanged(&mut self, prev: &TraceParams) -> Result<bool> {
+    /// Whether the reprojection into the current G-buffer would repeat the last one and that
+    /// one moved no seed (see [`ReprojectionInputs`]); otherwise records the inputs of the one
+    /// about to run.
+    fn reprojection_unchanged(&mut self) -> Result<bool> {
         let inputs = ReprojectionInputs {
             previous: self.gviews[self.next_g],
             current: self.gviews[1 - self.next_g],
-            camera: ViewInputs::of(prev),
         };
-        let identity = match self.reprojection_inputs {
-            Some((last, known)) if last == inputs => match known {
-                Some(identity) => identity,
-                None => {
-                    // Read once per still view: the last run's map is still in `src`.
-                    let src = self.reprojection.src.read::<u32>()?;
-                    let identity = src
-                        .iter()
-                        .enumerate()
-                        .all(|(q, &s)| s == REPROJECT_NONE || s as usize == q);
-                    self.reprojection_inputs = Some((inputs, Some(identity)));
-                    identity
-                }
-            },
+        match self.reprojection_inputs {
+            Some((last, Some(identity))) if last == inputs => Ok(identity),
+            Some((last, None)) if last == inputs => {
+                // Read once per still view: the last run's map is still in `src`.
+                let src = self.reprojection.src.read::<u32>()?;
+                let identity = src
+                    .iter()
+                    .enumerate()
+                    .all(|(q, &s)| s == REPROJECT_NONE || s as usize == q);
+                self.reprojection_inputs = Some((inputs, Some(identity)));
+                Ok(identity)
+            }
             _ => {
                 self.reprojection_inputs = Some((inputs, None));
-                false
+                Ok(false)
             }
-        };
-        Ok(identity)
+        }
     }
 }
 
@@ -249,11 +244,12 @@ impl Renderer {
         let reproject = st.prev.is_some();
         // A still view's repeat of an identity reprojection is skipped: the seeds stay where
         // they are, `src` and the motion sums keep the last run's (equal) values.
-        let moved = match st.prev {
-            Some(prev) => !st.reprojection_unchanged(&prev)?,
-            None => false,
+        let prev = st.prev;
+        let run = match prev {
+            Some(prev) if !st.reprojection_unchanged()? => Some(prev),
+            _ => None,
         };
-        if let (true, Some(prev)) = (moved, &st.prev) {
+        if let Some(prev) = &run {
             let mp = motion_params(prev, &self.screen);
             self.rec.begin_pass("reproject_motion")?;
             let r = &st.reprojection;
@@ -270,7 +266,7 @@ impl Renderer {
         let times = self.rec.submit_and_wait()?;
         st.prev = Some(*tp);
         st.reprojected = reproject;
-        if moved {
+        if run.is_some() {
             self.current = 1 - self.current;
         }
         if m.shifts_grid() {
