@@ -1,7 +1,11 @@
 //! Owen-scrambled Sobol after Burley 2020 ("Practical Hash-based Owen Scrambling"): the sample
-//! index is shuffled by a nested uniform scramble, the 4D Sobol point is computed from direction
-//! numbers, and each coordinate is Owen-scrambled with its own seed. Every further group of four
-//! dimensions uses a fresh seed (hash of seed and group), as Burley proposes.
+//! index is shuffled by a nested uniform scramble, the Sobol point is computed from direction
+//! numbers, and each coordinate is Owen-scrambled with its own seed. The sequence is padded by
+//! pairs: each pair of dimensions (2k, 2k+1) takes Sobol dimensions 0 and 1 with a fresh seed
+//! (hash of seed and pair) and its own index shuffle, as pbrt-v4's padded Sobol sampler does.
+//! Pairs rather than Burley's groups of four because Sobol dimensions 2-3 are no (0,2)-sequence,
+//! and the path tracer draws its samples in pairs (lens, light, BSDF): with groups of four, every
+//! second pair (the light sample among them) lost the (0,2)-net property.
 //!
 //! The hash inside the scramble is Vegdahl's revised Laine-Karras-style permutation
 //! ("Building a Better LK Hash", 2021, second version of the constants), not Burley's original
@@ -12,8 +16,8 @@
 
 use crate::rng::pcg_hash;
 
-/// Dimensions per Sobol group (then the seed is re-hashed).
-pub const GROUP_DIMS: u32 = 4;
+/// Dimensions per padded Sobol group (then the seed and the index shuffle are re-hashed).
+pub const GROUP_DIMS: u32 = 2;
 
 /// Joe & Kuo (new-joe-kuo-6.21201) parameters for dimensions 2..4: (degree s, a, m_1..m_s).
 const JOE_KUO: [(u32, u32, [u32; 3]); 3] =
@@ -105,8 +109,7 @@ pub const BLOCK_NET_LOCAL_BITS: u32 = 6;
 /// chunk, and decorrelates the pairs). So whatever pixel each seed sits on, the block's seeds
 /// at any one index together hold a (0,6,2)-net in every pair (the light sample's included),
 /// which keeps the block's mean error small in every frame; the permutation passes only
-/// arrange it (`sort-cycle`). Pairs rather than groups of four: Sobol dimensions 2-3 form no
-/// (0,2)-net.
+/// arrange it (`sort-cycle`). Pairs, as in [`owen_sobol_bits`].
 pub fn block_net_bits(seed: u32, index: u32, dim: u32, dirs: &[[u32; 32]; 4]) -> u32 {
     let key = hash_combine(seed >> BLOCK_NET_LOCAL_BITS, dim / 2);
     let local = seed & ((1 << BLOCK_NET_LOCAL_BITS) - 1);
@@ -183,12 +186,14 @@ mod tests {
     }
 
     #[test]
-    fn owen_scrambled_dims_0_1_stay_0m2_nets() {
+    fn every_owen_scrambled_pair_is_a_0m2_net() {
+        // Every pair the path tracer draws (lens, light, BSDF at each vertex), not only the
+        // first of each group: the light sample sits on dimensions 2-3.
         let dirs = direction_numbers();
         for seed in [0u32, 1, 0xdead_beef, 12345] {
-            for group in 0..3 {
+            for pair in 0..8 {
                 for m in 1..=12 {
-                    let d = group * GROUP_DIMS;
+                    let d = 2 * pair;
                     let pts: Vec<_> = (0..1u32 << m)
                         .map(|i| {
                             (
@@ -197,7 +202,7 @@ mod tests {
                             )
                         })
                         .collect();
-                    assert!(is_0m2_net(&pts, m), "seed {seed} group {group} m {m}");
+                    assert!(is_0m2_net(&pts, m), "seed {seed} pair {pair} m {m}");
                 }
             }
         }
