@@ -86,6 +86,7 @@ pub fn load_scene(spec: &str, lights: &LightArgs) -> Result<Scene> {
     let opts = blueshift_scene::LoadOptions {
         environment,
         quiet: true,
+        ..Default::default()
     };
     let looks_like_preset = !spec.contains(['/', '.']);
     let mut scene = match Scene::load_with(&path, &opts) {

@@ -174,6 +174,50 @@ fn scene_over_device_limits() {
 }
 
 #[test]
+fn node_graphs_that_are_not_trees_and_scenes_over_the_budget() {
+    use blueshift_scene::presets::hostile;
+    let c = Case::new();
+    let seed = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fuzz/corpus/gltf/seed_regress_node_cycle.glb");
+    let cases = [
+        (
+            "cycle.glb",
+            std::fs::read(seed).expect("regression seed"),
+            "node 0 is its own ancestor",
+        ),
+        (
+            "parents.glb",
+            hostile::two_parents(),
+            "node 2 has two parents, nodes 0 and 1",
+        ),
+        (
+            "chain.glb",
+            hostile::shared_chain(40),
+            "node 39 is listed more than once among the children of node 38",
+        ),
+        (
+            "instanced.glb",
+            hostile::instanced(1025, 16384),
+            "16793600 triangles after instancing, over the loader's limit of 16777216",
+        ),
+    ];
+    for (name, bytes, needle) in cases {
+        let p = c.write(name, bytes);
+        let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+        c.expect_error(&o, &[name, needle]);
+    }
+    // An image header declaring 60,000 x 60,000 texels: the texture is skipped, the scene renders.
+    let p = c.write("huge.glb", hostile::huge_texture(60_000, 60_000));
+    let o = c.render(&["--scene", p.to_str().expect("utf-8")], &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: image 0 cannot be used (its header declares 60000 x 60000"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn resolution_out_of_range() {
     let c = Case::new();
     for (w, h) in [("0", "8"), ("8", "0"), ("20000", "8")] {

@@ -74,8 +74,61 @@ pub enum SceneError {
         position: [f32; 3],
     },
 
-    #[error("{}: node hierarchy is deeper than {max_depth} levels (cyclic?)", path.display())]
+    #[error("{}: node hierarchy is deeper than {max_depth} levels", path.display())]
     NodeDepth { path: PathBuf, max_depth: usize },
+
+    /// glTF nodes form disjoint trees; the node graph of the scene is checked before it is
+    /// expanded, since a cycle or a shared child repeats its subtree without bound.
+    #[error("{}: node {node} is its own ancestor", path.display())]
+    NodeCycle { path: PathBuf, node: usize },
+
+    #[error("{}: node {node} has two parents, nodes {} and {}", path.display(), parents[0], parents[1])]
+    NodeParents {
+        path: PathBuf,
+        node: usize,
+        parents: [usize; 2],
+    },
+
+    #[error(
+        "{}: node {node} is listed more than once among the children of node {parent}",
+        path.display()
+    )]
+    NodeRepeated {
+        path: PathBuf,
+        node: usize,
+        parent: usize,
+    },
+
+    #[error(
+        "{}: node {node} is a root of scene {scene} and also a child of node {parent}",
+        path.display()
+    )]
+    RootWithParent {
+        path: PathBuf,
+        scene: usize,
+        node: usize,
+        parent: usize,
+    },
+
+    #[error(
+        "{}: node {node} is listed more than once among the roots of scene {scene}",
+        path.display()
+    )]
+    RootRepeated {
+        path: PathBuf,
+        scene: usize,
+        node: usize,
+    },
+
+    /// A count taken from the file before anything is allocated for it, over the loader's
+    /// budget ([`crate::LoadBudget`]).
+    #[error("{}: the scene has {count} {what}, over the loader's limit of {limit}", path.display())]
+    OverBudget {
+        path: PathBuf,
+        what: &'static str,
+        count: u64,
+        limit: u64,
+    },
 
     #[error("{}: the scene has no triangles to render ({reason})", path.display())]
     EmptyScene { path: PathBuf, reason: String },

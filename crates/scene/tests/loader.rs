@@ -199,6 +199,7 @@ fn camera_environment_and_override() {
     let opts = LoadOptions {
         environment: Some(blueshift_scene::EnvironmentSource::Constant(Vec3::ONE)),
         quiet: true,
+        ..Default::default()
     };
     assert_eq!(Scene::load_with(&p, &opts).unwrap().environment, Vec3::ONE);
 }

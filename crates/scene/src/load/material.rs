@@ -7,18 +7,20 @@ use gltf::image::Format;
 use gltf::texture::{MagFilter, WrappingMode};
 use std::path::Path;
 
-/// Decodes every image to RGBA8. Returns the decoded images and, per glTF image index, its
-/// index among them (`None` when it could not be decoded: a warning, and textures using it are
-/// dropped from their materials).
+/// Decodes every image to RGBA8, while the texels its header declares fit in `texels` (what
+/// is left of the budget for all images). Returns the decoded images and, per glTF image
+/// index, its index among them (`None` when it could not be used: a warning, and textures
+/// using it are dropped from their materials).
 pub(super) fn load_images(
     document: &gltf::Document,
     base: Option<&Path>,
+    mut texels: u64,
     ctx: &mut Ctx,
 ) -> (Vec<Image>, Vec<Option<u32>>) {
     let mut images = Vec::new();
     let mut map = Vec::new();
     for image in document.images() {
-        match decode(&image, base, ctx) {
+        match decode(&image, base, &mut texels, ctx) {
             Ok(img) => {
                 map.push(Some(images.len() as u32));
                 images.push(img);
@@ -35,7 +37,12 @@ pub(super) fn load_images(
     (images, map)
 }
 
-fn decode(image: &gltf::Image, base: Option<&Path>, ctx: &Ctx) -> Result<Image, String> {
+fn decode(
+    image: &gltf::Image,
+    base: Option<&Path>,
+    texels_left: &mut u64,
+    ctx: &Ctx,
+) -> Result<Image, String> {
     if let gltf::image::Source::View { view, .. } = image.source() {
         let len = ctx
             .buffers
@@ -59,10 +66,18 @@ fn decode(image: &gltf::Image, base: Option<&Path>, ctx: &Ctx) -> Result<Image, 
             base = Some(Path::new(".")); // the reader decodes data URIs only when given a base
         }
     }
+    let (w, h) = super::image_size::declared(image.source(), base.unwrap_or(Path::new(".")), ctx)?;
+    let declared = u64::from(w) * u64::from(h);
+    if declared > *texels_left {
+        return Err(format!(
+            "its header declares {w} x {h} = {declared} texels, over the {} texels left of the \
+             loader's budget for all images",
+            *texels_left
+        ));
+    }
     let data = gltf::image::Data::from_source(image.source(), base, ctx.buffers)
         .map_err(|e| e.to_string())?;
-    let (w, h) = (data.width as usize, data.height as usize);
-    let n = w * h;
+    let n = data.width as usize * data.height as usize;
     let px = &data.pixels;
     let mut rgba = Vec::with_capacity(n * 4);
     let f32_at = |i: usize| {
@@ -101,6 +116,7 @@ fn decode(image: &gltf::Image, base: Option<&Path>, ctx: &Ctx) -> Result<Image, 
         }
         rgba.extend_from_slice(&c);
     }
+    *texels_left = texels_left.saturating_sub(n as u64);
     Ok(Image {
         name: image.name().map(str::to_string),
         width: data.width,

@@ -20,13 +20,18 @@
 //! extensions, undecodable images, ...) is skipped with one warning per kind in
 //! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
 
+mod budget;
 mod glb;
+mod graph;
 mod guard;
+mod image_size;
 mod lights;
 mod material;
 mod precheck;
 mod primitive;
 mod uri;
+
+pub use budget::LoadBudget;
 
 use crate::scene::{Image, Material, Scene, Texture};
 use crate::{Camera, Result, SceneError};
@@ -51,12 +56,14 @@ pub struct LoadOptions {
     pub environment: Option<EnvironmentSource>,
     /// Do not print warnings to stderr (they are still collected in `Scene::warnings`).
     pub quiet: bool,
+    /// The most the scene may hold (counted before it is read).
+    pub budget: LoadBudget,
 }
 
 /// The scene `extras` key holding the environment radiance `[r, g, b]`.
 pub const ENVIRONMENT_EXTRAS_KEY: &str = "blueshift_environment";
 
-/// Deepest node hierarchy accepted (deeper means a cycle or a hostile file).
+/// Deepest node hierarchy accepted.
 const MAX_NODE_DEPTH: usize = 256;
 
 /// Collects warnings, one line per kind, with a count of repeats.
@@ -126,7 +133,7 @@ pub(crate) fn load_bytes(
     options: &LoadOptions,
 ) -> Result<Scene> {
     let path = name;
-    let mut scene = guard::catch_panics(path, || load_inner(path, bytes, base))?;
+    let mut scene = guard::catch_panics(path, || load_inner(path, bytes, base, &options.budget))?;
     match &options.environment {
         Some(EnvironmentSource::Constant(c)) => {
             scene.environment = *c;
@@ -146,7 +153,12 @@ pub(crate) fn load_bytes(
     Ok(scene)
 }
 
-fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
+fn load_inner(
+    path: &Path,
+    bytes: &[u8],
+    base: Option<&Path>,
+    budget: &LoadBudget,
+) -> Result<Scene> {
     let parse = |source| SceneError::Parse {
         path: path.to_path_buf(),
         source,
@@ -177,7 +189,18 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
     }
     warn_extensions(&document, &mut ctx.warnings);
 
-    let (images, image_map) = material::load_images(&document, base, &mut ctx);
+    let gltf_scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+        .ok_or_else(|| SceneError::EmptyScene {
+            path: path.to_path_buf(),
+            reason: "the file has no scenes".into(),
+        })?;
+    // The graph and the counts first: nothing below allocates more than they allow.
+    let nodes = graph::check(path, &document, &gltf_scene, MAX_NODE_DEPTH)?;
+    budget::count(path, &document, &nodes, budget)?;
+
+    let (images, image_map) = material::load_images(&document, base, budget.texels, &mut ctx);
     let all_textures = material::load_textures(&document, &image_map);
     let mut textures = Vec::new();
     let mut materials = material::load_materials(&document, &all_textures, &mut textures, &mut ctx);
@@ -188,28 +211,16 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
         ..Material::default()
     });
 
-    let gltf_scene = document
-        .default_scene()
-        .or_else(|| document.scenes().next())
-        .ok_or_else(|| SceneError::EmptyScene {
-            path: path.to_path_buf(),
-            reason: "the file has no scenes".into(),
-        })?;
     let environment = environment_from_extras(gltf_scene.extras(), &mut ctx.warnings);
 
     let mut triangles = Vec::new();
     let mut camera = None;
     let mut punctual = Vec::new();
-    let mut stack: Vec<(gltf::Node, Mat4, usize)> =
-        gltf_scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    // Each node once (the graph check guarantees it), in the file's order.
+    let mut stack: Vec<(gltf::Node, Mat4)> =
+        gltf_scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
     stack.reverse();
-    while let Some((node, parent, depth)) = stack.pop() {
-        if depth >= MAX_NODE_DEPTH {
-            return Err(SceneError::NodeDepth {
-                path: path.to_path_buf(),
-                max_depth: MAX_NODE_DEPTH,
-            });
-        }
+    while let Some((node, parent)) = stack.pop() {
         let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
         if !world.is_finite() {
             ctx.warnings.warn("transform", || {
@@ -247,7 +258,7 @@ fn load_inner(path: &Path, bytes: &[u8], base: Option<&Path>) -> Result<Scene> {
         }
         let children: Vec<_> = node.children().collect();
         for child in children.into_iter().rev() {
-            stack.push((child, world, depth + 1));
+            stack.push((child, world));
         }
     }
 

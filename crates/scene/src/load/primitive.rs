@@ -80,8 +80,9 @@ pub(super) fn read(
     // Normals (optional; flat normals are generated when missing, as glTF requires).
     let mut normals: Option<Vec<Vec3>> = None;
     if let Some(acc) = prim.get(&gltf::Semantic::Normals) {
-        let ok =
-            check_accessor(&acc, &[Dimensions::Vec3], &[DataType::F32], buffers).and_then(|_| {
+        let ok = check_accessor(&acc, &[Dimensions::Vec3], &[DataType::F32], buffers)
+            .and_then(|_| same_count(&acc, n_verts))
+            .and_then(|_| {
                 let v: Vec<Vec3> = reader
                     .read_normals()
                     .ok_or("cannot be read")?
@@ -116,6 +117,7 @@ pub(super) fn read(
             &[DataType::F32, DataType::U8, DataType::U16],
             buffers,
         )
+        .and_then(|_| same_count(&acc, n_verts))
         .and_then(|_| {
             let v: Vec<Vec2> = reader
                 .read_tex_coords(0)
@@ -217,6 +219,16 @@ pub(super) fn read(
         });
     }
     Ok(())
+}
+
+/// A vertex attribute must have one element per vertex; checked before it is read, since a
+/// sparse accessor's count is not bounded by any data in the file.
+fn same_count(acc: &gltf::Accessor, n_verts: usize) -> std::result::Result<(), String> {
+    if acc.count() == n_verts {
+        Ok(())
+    } else {
+        Err("has the wrong count".into())
+    }
 }
 
 /// Checks type, count and that the accessor's bytes lie inside its buffer view and buffer, so

@@ -30,7 +30,7 @@ pub(crate) fn percent_decode(uri: &str) -> Result<String, String> {
 
 /// The file an external URI names (as the glTF reader resolves it), or `None` when the reader
 /// will not open a file for it (data URIs, other schemes, no base directory).
-fn resolve(uri: &str, base: Option<&Path>) -> Result<Option<PathBuf>, String> {
+pub(crate) fn resolve(uri: &str, base: Option<&Path>) -> Result<Option<PathBuf>, String> {
     if uri.contains(':') {
         let file = uri
             .strip_prefix("file://")

@@ -12,6 +12,7 @@
 
 mod base64;
 mod builder;
+pub mod hostile;
 mod shapes;
 
 pub use builder::{GltfBuilder, MeshData, glb};
