@@ -53,18 +53,8 @@ pub(super) fn check(
             if on_path[node] {
                 return Err(SceneError::NodeCycle { path, node });
             }
-            match seen[node] {
-                Seen::No => {}
-                Seen::Root => {
-                    let scene = scene.index();
-                    return Err(SceneError::RootWithParent {
-                        path,
-                        scene,
-                        node,
-                        parent,
-                    });
-                }
-                Seen::ChildOf(first) => return Err(second_parent(path, node, first, parent)),
+            if seen[node] != Seen::No {
+                return Err(listed_again(path, scene.index(), node, seen[node], parent));
             }
             if stack.len() >= max_depth {
                 return Err(SceneError::NodeDepth { path, max_depth });
@@ -79,40 +69,37 @@ pub(super) fn check(
     for outside in document.nodes().filter(|p| seen[p.index()] == Seen::No) {
         for child in outside.children() {
             let node = child.index();
-            match seen[node] {
-                Seen::No => {}
-                Seen::Root => {
-                    let scene = scene.index();
-                    let parent = outside.index();
-                    return Err(SceneError::RootWithParent {
-                        path,
-                        scene,
-                        node,
-                        parent,
-                    });
-                }
-                Seen::ChildOf(first) => {
-                    return Err(second_parent(path, node, first, outside.index()));
-                }
+            if seen[node] != Seen::No {
+                let parent = outside.index();
+                return Err(listed_again(path, scene.index(), node, seen[node], parent));
             }
         }
     }
     Ok(order)
 }
 
-fn second_parent(path: std::path::PathBuf, node: usize, first: usize, second: usize) -> SceneError {
-    if first == second {
-        SceneError::NodeRepeated {
+/// The error for `node` of `scene`, reached before as `seen`, listed again as a child of
+/// `parent`.
+fn listed_again(
+    path: std::path::PathBuf,
+    scene: usize,
+    node: usize,
+    seen: Seen,
+    parent: usize,
+) -> SceneError {
+    match seen {
+        Seen::ChildOf(first) if first == parent => SceneError::NodeRepeated { path, node, parent },
+        Seen::ChildOf(first) => SceneError::NodeParents {
             path,
             node,
-            parent: first,
-        }
-    } else {
-        SceneError::NodeParents {
+            parents: [first, parent],
+        },
+        Seen::Root | Seen::No => SceneError::RootWithParent {
             path,
+            scene,
             node,
-            parents: [first, second],
-        }
+            parent,
+        },
     }
 }
 

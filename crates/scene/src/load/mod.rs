@@ -14,10 +14,13 @@
 //!
 //! Bad data: a missing file, malformed JSON/GLB (GLB headers are checked before the reader
 //! sees them, see `glb`), missing buffers, unreadable accessors, out-of-range vertex indices
-//! and non-finite positions are errors ([`SceneError`]).
+//! and non-finite positions are errors ([`SceneError`]). So are a node graph that is not a
+//! tree and a scene over [`LoadBudget`]: both are checked from the JSON before the scene is
+//! expanded (`graph`, `budget`), so memory stays proportional to the file and to the scene.
 //! Zero-area triangles are skipped and counted in one warning. Unsupported content
 //! (non-triangle modes, normal/occlusion maps, texture transforms, unusable lights, other
-//! extensions, undecodable images, ...) is skipped with one warning per kind in
+//! extensions, undecodable images or ones whose header declares more texels than the budget
+//! has left, ...) is skipped with one warning per kind in
 //! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
 
 mod budget;

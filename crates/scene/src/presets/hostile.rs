@@ -3,6 +3,7 @@
 //! billions of texels. The tests and the fuzz seeds use them; the loader refuses each (or
 //! skips the image) without expanding it.
 
+use super::shapes::rectangle;
 use super::{GltfBuilder, MeshData};
 use serde_json::json;
 
@@ -10,7 +11,7 @@ use serde_json::json;
 /// `roots` are the roots of its scene.
 pub fn node_graph(children: &[Vec<usize>], roots: &[usize]) -> Vec<u8> {
     let mut b = GltfBuilder::new();
-    let mesh = b.add_mesh("quad", &quad(), None);
+    let mesh = b.add_mesh("quad", &rectangle(1.0), None);
     for c in children {
         b.add_node(json!({ "mesh": mesh, "children": c }));
     }
@@ -87,24 +88,10 @@ pub fn huge_texture(width: u32, height: u32) -> Vec<u8> {
     let material = b.add_material(json!({
         "pbrMetallicRoughness": { "baseColorTexture": { "index": tex } }
     }));
-    let mesh = b.add_mesh("quad", &quad(), Some(material));
+    let mesh = b.add_mesh("quad", &rectangle(1.0), Some(material));
     let n = b.add_node(json!({ "mesh": mesh }));
     b.add_root(n);
     b.to_glb()
-}
-
-fn quad() -> MeshData {
-    MeshData {
-        positions: vec![
-            [-1.0, -1.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [-1.0, 1.0, 0.0],
-        ],
-        uvs: Some(vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]),
-        indices: Some(vec![0, 1, 2, 2, 3, 0]),
-        ..MeshData::default()
-    }
 }
 
 /// CRC-32 (ISO-HDLC, as PNG chunks use), bit by bit: these files are tiny.
