@@ -26,6 +26,9 @@ pub struct Named<T: 'static> {
 
 impl<T: Clone + Send + Sync + 'static> Named<T> {
     fn value(&self, s: &str) -> Result<T, String> {
+        if s.is_empty() {
+            return Err(format!("no {} named (an empty item?)", self.what));
+        }
         if let Some(parse) = self.parse {
             return parse(s);
         }

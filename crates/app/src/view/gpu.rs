@@ -367,7 +367,7 @@ fn make_renderer(
         method,
         ..opts.template.clone()
     };
-    start_renderer(dev, opts, size, s, cfg)
+    start(dev, opts, sized(cfg, size, s))
 }
 
 /// The error view's reference: Sobol, accumulating while the camera is still.
@@ -387,28 +387,25 @@ fn make_reference(
         sampler: None,
         ..opts.template.clone()
     };
-    start_renderer(dev, opts, size, &s, cfg)
+    start(dev, opts, sized(cfg, size, &s))
 }
 
-/// A renderer of `cfg` at `size` with the quality settings of `s`.
-fn start_renderer(
-    dev: &Device,
-    opts: &Options,
-    size: (u32, u32),
-    s: &Settings,
-    cfg: RenderConfig,
-) -> Result<Renderer> {
-    let cfg = RenderConfig {
+/// `cfg` at `size` with the quality settings of `s`.
+fn sized(cfg: RenderConfig, size: (u32, u32), s: &Settings) -> RenderConfig {
+    RenderConfig {
         width: size.0,
         height: size.1,
         spp: s.spp,
         bounces: s.bounces,
         block: s.block,
         ..cfg
-    };
-    let method = cfg.method;
+    }
+}
+
+fn start(dev: &Device, opts: &Options, cfg: RenderConfig) -> Result<Renderer> {
+    let (method, w, h) = (cfg.method, cfg.width, cfg.height);
     Renderer::new(dev, &opts.scene, &opts.assets, cfg)
-        .with_context(|| format!("creating the {method} renderer at {}x{}", size.0, size.1))
+        .with_context(|| format!("creating the {method} renderer at {w}x{h}"))
 }
 
 #[cfg(test)]
