@@ -2,7 +2,7 @@
 // G-buffer pass: the primary hit through each pixel centre (same camera ray as `trace` without
 // jitter): world position, geometric normal facing the camera, material + 1 (0 = no hit),
 // distance. Feeds edge-aware grouping and seed reprojection. Engines with their own G-buffer
-// can fill the same struct instead. CPU twin: crates/render/src/gbuffer.rs gbuffer_cpu.
+// can fill the same struct instead. CPU twin: crates/trace/src/gbuffer.rs gbuffer_cpu.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #include "generated/scene.glsl"

@@ -1,6 +1,6 @@
 // Path-tracing pass: one invocation per pixel running TraceParams::sample_count paths per
 // dispatch (the host splits a frame's samples into dispatches sized against llvmpipe's loop
-// limit, counted below; see passes.rs), software BVH traversal over the scene images, glTF
+// limit, counted below; see crates/trace/src/pass.rs), software BVH traversal over the scene images, glTF
 // BRDF, next-event estimation with MIS (power heuristic) against BRDF sampling on emissive
 // triangles (and with TRACE_LIGHTS on punctual lights and the environment map), a constant
 // environment or a map, Russian roulette. All randomness comes from the pixel's seed in the
@@ -77,7 +77,7 @@ uint g_loop_ticks;
 #define TRACE_LOOP_STATS 0
 #endif
 #if TRACE_LOOP_STATS
-// Loop statistics (trace/trace_loop_stats.comp; TraceLoop in Rust): per loop, the iterations
+// Loop statistics (the trace/trace_loop_stats variants; TraceLoop in Rust): per loop, the iterations
 // this lane ran and those its batch ran (one elected lane counts each iteration of the batch),
 // added to trace_status at the end of main. The counting itself costs time: timings come from
 // the other variants.

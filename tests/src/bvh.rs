@@ -43,31 +43,10 @@ fn rays(scene: &Scene, n: u32) -> Vec<Ray> {
 
 /// `n` random small triangles in a 10^3 box, as an in-memory scene.
 fn soup(n: u32) -> Scene {
-    use blueshift_scene::{Material, Triangle};
-    let triangles = (0..n)
-        .map(|i| {
-            let c = rand3(i, 11) * 10.0;
-            Triangle {
-                positions: [0, 1, 2].map(|k| c + rand3(i * 3 + k, 12) - 0.5),
-                normals: [Vec3::Z; 3],
-                uvs: [glam::Vec2::ZERO; 3],
-                material: 0,
-            }
-        })
-        .collect();
-    Scene {
-        source: "soup".into(),
-        triangles,
-        materials: vec![Material::default()],
-        textures: vec![],
-        images: vec![],
-        camera: None,
-        environment: Vec3::ZERO,
-        environment_map: None,
-        environment_sampling: blueshift_scene::EnvSampling::Importance,
-        lights: vec![],
-        warnings: vec![],
-    }
+    Scene::from_triangles((0..n).map(|i| {
+        let c = rand3(i, 11) * 10.0;
+        [0, 1, 2].map(|k| c + rand3(i * 3 + k, 12) - 0.5)
+    }))
 }
 
 fn check(gpu: &mut Gpu, name: &str, scene: &Scene, n: u32) {
@@ -121,8 +100,7 @@ fn check(gpu: &mut Gpu, name: &str, scene: &Scene, n: u32) {
 #[test]
 fn gpu_traversal_matches_cpu_on_bundled_scenes_and_a_soup() {
     let mut gpu = Gpu::new();
-    let root = std::env::var_os("CARGO_MANIFEST_DIR").expect("run under cargo");
-    let dir = std::path::Path::new(&root).join("../assets/scenes");
+    let dir = blueshift_render::default_assets_dir().join("scenes");
     for name in ["cornell-box", "textured", "edges"] {
         let scene = Scene::load(dir.join(format!("{name}.gltf"))).unwrap();
         check(&mut gpu, name, &scene, 30_000);

@@ -35,7 +35,6 @@ mod loop_stats;
 #[cfg(test)]
 mod motion;
 #[cfg(test)]
-#[cfg(test)]
 mod permute;
 #[cfg(test)]
 mod rng;

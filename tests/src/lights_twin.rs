@@ -3,9 +3,7 @@
 use crate::{Gpu, groups_for};
 use blueshift_device::{Binding, Buffer};
 use blueshift_sampling::rng::{hash3, to_unit};
-use blueshift_scene::{
-    Camera, EnvMap, LightKind, Material, PunctualLight, Scene, SceneGpu, Triangle, env_direction,
-};
+use blueshift_scene::{Camera, EnvMap, LightKind, PunctualLight, Scene, SceneGpu, env_direction};
 use glam::{Vec2, Vec3, Vec4};
 use std::sync::Arc;
 
@@ -67,22 +65,10 @@ fn glsl_lights_match_rust_twins() {
     let mut map = test_map(24, 12);
     map.rotation = 0.8;
     let scene = Scene {
-        source: "twin".into(),
-        triangles: vec![Triangle {
-            positions: [Vec3::ZERO, Vec3::X, Vec3::Y],
-            normals: [Vec3::Z; 3],
-            uvs: [Vec2::ZERO; 3],
-            material: 0,
-        }],
-        materials: vec![Material::default()],
-        textures: vec![],
-        images: vec![],
         camera: Some(Camera::framing(&Default::default())),
-        environment: Vec3::ZERO,
         environment_map: Some(Arc::new(map.clone())),
-        environment_sampling: blueshift_scene::EnvSampling::Importance,
         lights: lights(),
-        warnings: vec![],
+        ..Scene::from_triangles([[Vec3::ZERO, Vec3::X, Vec3::Y]])
     };
     let sg = SceneGpu::build(&scene);
     let images = blueshift_trace::SceneImages::new(gpu.dev(), &sg).unwrap();

@@ -44,17 +44,11 @@ pub(crate) fn scene(
     camera: Camera,
 ) -> Scene {
     Scene {
-        source: "test".into(),
         triangles,
         materials,
-        textures: vec![],
-        images: vec![],
         camera: Some(camera),
         environment,
-        environment_map: None,
-        environment_sampling: blueshift_scene::EnvSampling::Importance,
-        lights: vec![],
-        warnings: vec![],
+        ..Scene::from_triangles([])
     }
 }
 

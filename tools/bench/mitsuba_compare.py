@@ -22,7 +22,7 @@ illumination (the first hit's emission plus light sampled at that hit). So
 `--bounces = max_depth - 1`: Mitsuba `max_depth 8` <-> Blueshift `--bounces 7`. The script
 checks this on two low depths too (`--check-depths`).
 
-Throughput (the anchors.md protocol): 512x512, box filter, 16 spp, one warm-up render and the
+Throughput: 512x512, box filter, 16 spp, one warm-up render and the
 median of 3 timed renders for Mitsuba (llvm_ad_rgb); `blueshift bench` (one warm-up frame,
 median of 3 frames, GPU-timestamp time of the trace pass, i.e. CPU wall time on lavapipe) with
 the same settings. The two alternate A B A B and the script prints each run, the load average

@@ -1,16 +1,10 @@
 //! Checks on the committed assets under `assets/` (see tools/README.md).
 
-use std::path::{Path, PathBuf};
-
-use blueshift_assets::{load_mask, load_retarget, load_stbn};
-use blueshift_tools::commands::assets::regenerate;
+use blueshift_assets::{default_assets_dir as assets, load_mask, load_retarget, load_stbn};
+use blueshift_tools::cli::regenerate;
 use blueshift_tools::manifest;
 use blueshift_tools::quality::{mask_quality, seam_ratio, temporal_lf};
 use blueshift_tools::retarget::{Problem, exact};
-
-fn assets() -> PathBuf {
-    Path::new(&std::env::var_os("CARGO_MANIFEST_DIR").expect("run under cargo")).join("../assets")
-}
 
 #[test]
 fn manifest_hashes_match() {

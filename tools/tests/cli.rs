@@ -3,7 +3,6 @@
 mod common;
 
 use common::{fails, ok, s};
-use std::path::Path;
 
 #[test]
 fn masks_spectrum_dither_retarget_figures() {
@@ -161,8 +160,7 @@ fn bad_input_gives_clear_errors() {
 
 #[test]
 fn manifest_check_command_passes_on_committed_assets() {
-    let m = Path::new(&std::env::var_os("CARGO_MANIFEST_DIR").expect("run under cargo"))
-        .join("../assets/MANIFEST");
+    let m = blueshift_assets::default_assets_dir().join("MANIFEST");
     let out = ok(&["manifest", "--check", "--manifest", s(&m)]);
     assert!(out.contains("all"), "{out}");
 }

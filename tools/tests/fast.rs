@@ -3,15 +3,10 @@
 mod common;
 
 use common::{fails, ok, s};
-use std::path::{Path, PathBuf};
 
-use blueshift_assets::load_stbn;
+use blueshift_assets::{default_assets_dir as assets, load_stbn};
 use blueshift_tools::fast::bench::{Integrand, filtered_rmse};
 use blueshift_tools::fast::{Params, Temporal, Volume};
-
-fn assets() -> PathBuf {
-    Path::new(&std::env::var_os("CARGO_MANIFEST_DIR").expect("run under cargo")).join("../assets")
-}
 
 #[test]
 fn fast_writes_a_stbn_format_volume_and_benchmarks_it() {

@@ -201,20 +201,6 @@ impl SpectrumAccumulator {
         }
     }
 
-    /// Adds another accumulator's tiles (same tile size and window).
-    pub fn merge(&mut self, other: &SpectrumAccumulator) -> Result<()> {
-        if other.n != self.n || other.window != self.window {
-            return Err(Error::Invalid(
-                "merging accumulators of different setup".into(),
-            ));
-        }
-        for (s, v) in self.sum.iter_mut().zip(&other.sum) {
-            *s += v;
-        }
-        self.count += other.count;
-        Ok(())
-    }
-
     /// The mean spectrum over all tiles added so far.
     pub fn mean(&self) -> Result<Spectrum> {
         if self.count == 0 {

@@ -1,26 +1,26 @@
 //! `blueshift bench`: throughput of the path-tracing pass from GPU timestamps (on lavapipe,
 //! CPU time per pass), as Msamples/s; plus primary-ray Mrays/s with `--bounces 0`.
 use crate::GpuOpts;
-use crate::render::{SceneArgs, config, load_assets, load_scene};
+use crate::args::{MethodArgs, preset_name};
 use anyhow::{Result, bail};
 use blueshift_render::{
-    CameraPath, LLVMPIPE_LOOP_LIMIT, LoopStats, RenderConfig, Renderer, TraceLoop,
+    CameraPath, LLVMPIPE_LOOP_LIMIT, LoopStats, Method, RenderConfig, Renderer, TraceLoop,
 };
 
+/// `bench`'s flags.
 #[derive(clap::Args, Debug)]
+#[command(mut_arg("method", |a| a.default_value(preset_name(Method::White))))]
 pub struct BenchArgs {
     #[command(flatten)]
-    pub scene: SceneArgs,
+    pub method: MethodArgs,
     /// Timed frames (after one warm-up frame).
     #[arg(long, default_value_t = 3)]
     pub frames: u32,
-    #[arg(long, default_value = "white")]
-    pub method: String,
     /// Camera motion over the timed frames, as for `render` (static, pan:PX, orbit:DEG,
     /// swing:DEG or a keyframe file). A still view lets methods that group by surface reuse
     /// the G-buffer and classes, so their pass costs differ under motion.
-    #[arg(long, default_value = "static")]
-    pub camera_path: String,
+    #[arg(long, default_value = "static", value_parser = CameraPath::parse)]
+    pub camera_path: CameraPath,
     /// Also render the same frames with the loop-counting shader and print, per loop of the
     /// path tracer, its share of the SIMD batches' iterations and how many lanes were busy
     /// in them (the timings come from the normal shader).
@@ -32,12 +32,12 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     if !(1..=1000).contains(&a.frames) {
         bail!("--frames {} is outside 1..=1000", a.frames);
     }
-    let mut cfg = config(&a.scene, &a.method)?;
-    let path = CameraPath::parse(&a.camera_path).map_err(anyhow::Error::msg)?;
+    let mut cfg = a.method.config();
+    let path = &a.camera_path;
     let (view, base_offset) = path.view_window(a.frames + 1, cfg.width, cfg.height);
     cfg.view_size = Some(view);
-    let scene = load_scene(&a.scene.scene, &a.scene.lights)?;
-    let assets = load_assets(&a.scene)?;
+    let scene = a.method.scene.load_scene()?;
+    let assets = a.method.scene.load_assets()?;
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
     let base = scene.camera_or_default();
@@ -69,7 +69,7 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     let samples = cfg.width as f64 * cfg.height as f64 * cfg.spp as f64;
     println!(
         "scene {} {}x{} spp {} bounces {} method {} on {}",
-        a.scene.scene,
+        a.method.scene.scene,
         cfg.width,
         cfg.height,
         cfg.spp,

@@ -32,8 +32,9 @@ pub struct LightArgs {
     /// How next-event estimation samples the map: importance (by luminance, with MIS),
     /// uniform (by solid angle, with MIS) or brdf (not at all: only rays that leave the scene
     /// find it). The last two are for comparisons.
-    #[arg(long, default_value = "importance", value_parser = ["importance", "uniform", "brdf"])]
-    pub environment_sampling: String,
+    #[arg(long, default_value = EnvSampling::default().name(),
+          value_parser = crate::args::env_sampling_parser())]
+    pub environment_sampling: EnvSampling,
 }
 
 impl Default for LightArgs {
@@ -42,7 +43,7 @@ impl Default for LightArgs {
             environment: None,
             environment_rotation: 0.0,
             environment_intensity: 1.0,
-            environment_sampling: "importance".into(),
+            environment_sampling: EnvSampling::default(),
         }
     }
 }
@@ -74,11 +75,7 @@ impl LightArgs {
         let warning = scene.light_if_dark();
         scene.scale_environment(k);
         scene.rotate_environment(r.to_radians());
-        scene.environment_sampling = match self.environment_sampling.as_str() {
-            "uniform" => EnvSampling::Uniform,
-            "brdf" => EnvSampling::Brdf,
-            _ => EnvSampling::Importance,
-        };
+        scene.environment_sampling = self.environment_sampling;
         Ok(warning)
     }
 }

@@ -1,4 +1,5 @@
 //! `blueshift`: the command-line entry point.
+mod args;
 mod bench;
 mod eval;
 mod fail;

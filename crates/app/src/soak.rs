@@ -3,16 +3,18 @@
 //! device memory in use have not grown since the warm-up. Prints the figures of every check;
 //! fails (exit 1) on the first violation.
 use crate::GpuOpts;
-use crate::render::{SceneArgs, config, load_assets, load_scene};
+use crate::args::{MethodArgs, preset_name};
 use anyhow::{Result, bail};
 use blueshift_permute::is_permutation_of;
-use blueshift_render::Renderer;
+use blueshift_render::{Method, Renderer};
 use std::time::Instant;
 
+/// `soak`'s flags. `--method` must permute seeds (a sort preset or a spelled-out `sort:...`).
 #[derive(clap::Args, Debug)]
+#[command(mut_arg("method", |a| a.default_value(preset_name(Method::SORT_RETARGET))))]
 pub struct SoakArgs {
     #[command(flatten)]
-    pub scene: SceneArgs,
+    pub method: MethodArgs,
     #[arg(long, default_value_t = 10_000)]
     pub frames: u32,
     /// Check the seeds and memory every this many frames.
@@ -28,10 +30,6 @@ pub struct SoakArgs {
     /// Allowed growth of device memory in use over the baseline, bytes (allocations are exact).
     #[arg(long, default_value_t = 0)]
     pub device_tolerance: u64,
-    /// A method that permutes seeds (`sort`, `sort-retarget`, a `sort-grid-*` preset or a
-    /// spelled-out `sort:...` form).
-    #[arg(long, default_value = "sort-retarget")]
-    pub method: String,
 }
 
 /// Resident set size of this process in KiB (`VmRSS` of /proc/self/status).
@@ -58,15 +56,22 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
     }
     // The baseline is taken at the latest at the first check.
     let warmup = a.warmup.clamp(1, a.check_every);
-    let cfg = config(&a.scene, &a.method)?;
+    let cfg = a.method.config();
     if !cfg.method.sorts() {
+        let permuting: Vec<&str> = Method::PRESETS
+            .iter()
+            .filter(|(_, m)| m.sorts())
+            .map(|(n, _)| *n)
+            .collect();
         bail!(
-            "soak checks the seed permutation: --method must be sort or sort-retarget, not {}",
+            "soak checks the seed permutation: --method must permute seeds ({} or a spelled-out \
+             sort:...), not {}",
+            permuting.join(", "),
             cfg.method
         );
     }
-    let scene = load_scene(&a.scene.scene, &a.scene.lights)?;
-    let assets = load_assets(&a.scene)?;
+    let scene = a.method.scene.load_scene()?;
+    let assets = a.method.scene.load_assets()?;
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
     println!(

@@ -49,7 +49,7 @@ fn missing_asset_and_camera_path_files() {
 #[test]
 fn fast_without_its_mask_names_the_tool() {
     let c = Case::new();
-    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let src = assets();
     let dir = c.path("assets-without-fast");
     for f in [
         "masks/bn64.r16",
@@ -400,7 +400,10 @@ fn other_bad_arguments_are_errors_not_panics() {
         ],
         &[],
     );
-    c.expect_error(&o, &["--method must be sort or sort-retarget"]);
+    c.expect_error(
+        &o,
+        &["--method must permute seeds", "sort-retarget", "not white"],
+    );
 }
 
 #[test]

@@ -8,6 +8,8 @@
 //! * [`MethodAssets`]: the mask tile, retarget table, spatio-temporal mask and HBO+19 key
 //!   tables of an `assets/` directory ([`default_assets_dir`]), flattened for upload.
 //!
+//! * [`workspace_path`]: a directory of this checkout, found at run time.
+//!
 //! Every error is an [`AssetError`] naming the file.
 //!
 //! ```no_run
@@ -23,6 +25,7 @@
 mod error;
 mod formats;
 mod method;
+mod workspace;
 
 pub use error::{AssetError, Result, write_atomic};
 pub use formats::{
@@ -30,3 +33,4 @@ pub use formats::{
     load_mask, load_retarget, load_stbn, save_mask, save_retarget, save_stbn,
 };
 pub use method::{FAST_FILE, MethodAssets, default_assets_dir};
+pub use workspace::workspace_path;

@@ -30,24 +30,13 @@ pub struct MethodAssets {
     pub keys: Vec<KeyTable>,
 }
 
-/// `BLUESHIFT_ASSETS`, else the nearest `assets/` (holding a MANIFEST) above the running cargo
-/// package or the current directory, else the one next to where this crate was compiled.
-/// (Looked up at run time so a moved checkout sharing a target dir finds its own assets.)
+/// `BLUESHIFT_ASSETS`, else the workspace's `assets/` (the nearest one holding a MANIFEST,
+/// [`crate::workspace_path`]).
 pub fn default_assets_dir() -> PathBuf {
     if let Some(d) = std::env::var_os("BLUESHIFT_ASSETS") {
         return PathBuf::from(d);
     }
-    let starts = [
-        std::env::var_os("CARGO_MANIFEST_DIR").map(PathBuf::from),
-        std::env::current_dir().ok(),
-    ];
-    starts
-        .into_iter()
-        .flatten()
-        .flat_map(|s| s.ancestors().map(Path::to_path_buf).collect::<Vec<_>>())
-        .map(|a| a.join("assets"))
-        .find(|d| d.join("MANIFEST").is_file())
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets"))
+    crate::workspace_path("assets", |d| d.join("MANIFEST").is_file())
 }
 
 impl MethodAssets {

@@ -68,27 +68,9 @@ pub fn all() -> Vec<(&'static str, String)> {
     ]
 }
 
-/// The generated-header directory of this workspace: found from the running package's
-/// directory (cargo sets it at run time, right even when the binary was built in another
-/// checkout sharing the target dir), else from the current directory, else where this crate
-/// was compiled.
+/// The generated-header directory of this workspace ([`blueshift_assets::workspace_path`]).
 pub fn dir() -> PathBuf {
-    let rel = Path::new("shaders/include/generated");
-    let starts = [
-        std::env::var_os("CARGO_MANIFEST_DIR").map(PathBuf::from),
-        std::env::current_dir().ok(),
-    ];
-    starts
-        .into_iter()
-        .flatten()
-        .flat_map(|s| s.ancestors().map(Path::to_path_buf).collect::<Vec<_>>())
-        .map(|a| a.join(rel))
-        .find(|d| d.is_dir())
-        .unwrap_or_else(|| {
-            Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("../..")
-                .join(rel)
-        })
+    blueshift_assets::workspace_path("shaders/include/generated", Path::is_dir)
 }
 
 /// Paths whose content differs from what the Rust structs generate now.

@@ -120,7 +120,7 @@ pub fn sort_seeds_cpu(
     stats
 }
 
-/// Twin of `pair_thin_classes` in sort_seeds.comp: in classes at most 2 pixels wide or tall
+/// Twin of `pair_thin_classes` in sort_seeds.glsl: in classes at most 2 pixels wide or tall
 /// in the block (every class with `pairs == 2`), one checkerboard colour keeps its mask keys
 /// (the lower half of the class's ranks) and the other takes the upper half in the reverse
 /// order of its partner's key (partner: same class, left, else right, above, below), so

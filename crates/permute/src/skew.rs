@@ -1,4 +1,4 @@
-//! Twin of `count_skewed_classes` in sort_seeds.comp: how many classes of a block have keys
+//! Twin of `count_skewed_classes` in sort_seeds.glsl: how many classes of a block have keys
 //! skewed enough (sample skewness |g| > SKEW_LIMIT) that antithetic pairs would not cancel
 //! them.
 use blueshift_layout::params::{SKEW_LIMIT, SKEW_MIN_PIXELS};

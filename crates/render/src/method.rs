@@ -196,6 +196,12 @@ impl Method {
         Self::PRESETS.map(|(n, _)| n).join(", ")
     }
 
+    /// The fields of the spelled-out form `PRESET:field=value,...` with their values
+    /// (`key=raw|demod|history, ...`), for `--help`.
+    pub fn fields_syntax() -> String {
+        crate::method_spec::syntax()
+    }
+
     /// The permutation spec, for the seed-permutation methods.
     pub fn permutation(self) -> Option<Permutation> {
         match self {

@@ -71,17 +71,22 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
     Ok(())
 }
 
+/// Every field with its values, `key=raw|demod|history, grouping=...`.
+pub(crate) fn syntax() -> String {
+    FIELDS
+        .iter()
+        .map(|(f, v)| format!("{f}={}", v.join("|")))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// A preset name or a spelled-out permutation method.
 pub(crate) fn parse(s: &str) -> Result<Method, String> {
     let unknown = || {
         format!(
             "unknown method '{s}' (presets: {}; or PRESET:field=value,... with {})",
             Method::names(),
-            FIELDS
-                .iter()
-                .map(|(f, v)| format!("{f}={}", v.join("|")))
-                .collect::<Vec<_>>()
-                .join(", ")
+            syntax()
         )
     };
     let (base, spec) = s.split_once(':').unwrap_or((s, ""));

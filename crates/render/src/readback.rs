@@ -1,6 +1,6 @@
-//! Reading the renderer's buffers back (and replacing the seed map): for tests, reports,
-//! screenshots and engines that want the raw data.
-use crate::{RenderError, Renderer, Result};
+//! Reading the renderer's buffers back: for tests, reports, screenshots and engines that want
+//! the raw data.
+use crate::{Renderer, Result};
 use blueshift_device::Buffer;
 use blueshift_layout::motion::GBufferTexel;
 use blueshift_permute::Screen;
@@ -43,19 +43,6 @@ impl Renderer {
     /// The current (padded) seed buffer.
     pub fn read_seeds(&self) -> Result<Vec<u32>> {
         Ok(self.seeds[self.current].read::<u32>()?[..self.screen.seed_count()].to_vec())
-    }
-    /// Replaces the seed buffer (e.g. a precomputed seed map). Must be a permutation of
-    /// [`Self::initial_seeds`] for the permutation invariants to hold; only the length is checked.
-    pub fn write_seeds(&mut self, seeds: &[u32]) -> Result<()> {
-        if seeds.len() != self.screen.seed_count() {
-            return Err(RenderError::Invalid(format!(
-                "seed map has {} seeds, the padded screen needs {}",
-                seeds.len(),
-                self.screen.seed_count()
-            )));
-        }
-        self.seeds[self.current].write(0, seeds)?;
-        Ok(())
     }
     pub fn initial_seeds(&self) -> &[u32] {
         &self.initial_seeds

@@ -15,14 +15,28 @@ pub enum SeedMap {
     Hbo19,
 }
 
+impl SeedMap {
+    pub const ALL: [SeedMap; 2] = [SeedMap::Random, SeedMap::Hbo19];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            SeedMap::Random => "random",
+            SeedMap::Hbo19 => "hbo19",
+        }
+    }
+}
+
 impl std::str::FromStr for SeedMap {
     type Err = String;
     fn from_str(s: &str) -> std::result::Result<Self, String> {
-        match s {
-            "random" => Ok(SeedMap::Random),
-            "hbo19" => Ok(SeedMap::Hbo19),
-            _ => Err(format!("unknown seed map '{s}' (known: random, hbo19)")),
-        }
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                let known: Vec<&str> = Self::ALL.map(SeedMap::name).to_vec();
+                format!("unknown seed map '{s}' (known: {})", known.join(", "))
+            })
     }
 }
 

@@ -92,10 +92,6 @@ impl Samples {
     pub fn get(&self, sampler: Sampler, seed: u32, index: u32, dim: u32) -> f32 {
         rng::to_unit(self.bits(sampler, seed, index, dim))
     }
-
-    pub fn directions(&self) -> &[[u32; 32]; 4] {
-        &self.dirs
-    }
 }
 
 /// GLSL constants for `shaders/include/generated/sobol.glsl` (direction numbers and R2 alphas).

@@ -118,11 +118,6 @@ pub fn block_net_bits(seed: u32, index: u32, dim: u32, dirs: &[[u32; 32]; 4]) ->
     nested_uniform_scramble(sobol(point, d, dirs), hash_combine(key, d + 1))
 }
 
-/// Owen-scrambled Sobol sample in [0, 1).
-pub fn owen_sobol(seed: u32, index: u32, dim: u32, dirs: &[[u32; 32]; 4]) -> f32 {
-    crate::rng::to_unit(owen_sobol_bits(seed, index, dim, dirs))
-}
-
 /// Every elementary interval of area 2^-m holds exactly one of the first 2^m points.
 #[cfg(test)]
 pub(crate) fn is_0m2_net(points: &[(u32, u32)], m: u32) -> bool {

@@ -34,6 +34,23 @@ pub enum EnvSampling {
     Brdf,
 }
 
+impl EnvSampling {
+    pub const ALL: [EnvSampling; 3] = [
+        EnvSampling::Importance,
+        EnvSampling::Uniform,
+        EnvSampling::Brdf,
+    ];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            EnvSampling::Importance => "importance",
+            EnvSampling::Uniform => "uniform",
+            EnvSampling::Brdf => "brdf",
+        }
+    }
+}
+
 /// An equirectangular environment map, intensity applied.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EnvMap {

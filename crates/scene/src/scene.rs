@@ -131,6 +131,32 @@ impl Scene {
         load::load_bytes(Path::new("<memory>"), bytes, base, options)
     }
 
+    /// Bare triangles facing +Z with the default material, and nothing else: no camera, no
+    /// light, a black environment. Geometry for tests and benchmarks.
+    pub fn from_triangles(positions: impl IntoIterator<Item = [Vec3; 3]>) -> Scene {
+        Scene {
+            source: "<triangles>".into(),
+            triangles: positions
+                .into_iter()
+                .map(|positions| Triangle {
+                    positions,
+                    normals: [Vec3::Z; 3],
+                    uvs: [Vec2::ZERO; 3],
+                    material: 0,
+                })
+                .collect(),
+            materials: vec![Material::default()],
+            textures: vec![],
+            images: vec![],
+            camera: None,
+            environment: Vec3::ZERO,
+            environment_map: None,
+            environment_sampling: EnvSampling::Importance,
+            lights: vec![],
+            warnings: vec![],
+        }
+    }
+
     /// World-space bounds of all triangles.
     pub fn bounds(&self) -> Aabb {
         let mut b = Aabb::EMPTY;

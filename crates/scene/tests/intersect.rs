@@ -3,9 +3,9 @@
 mod common;
 
 use blueshift_scene::presets::{PRESETS, write_preset};
-use blueshift_scene::{Aabb, Material, Ray, Scene, SceneGpu, Triangle, intersect_triangle};
+use blueshift_scene::{Aabb, Ray, Scene, SceneGpu, intersect_triangle};
 use common::{Rng, load, random_rays, triangle_soup};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// Compares BVH and brute force on every ray; returns the number of rays that hit.
 fn compare(gpu: &SceneGpu, rays: &[Ray]) -> usize {
@@ -49,35 +49,10 @@ fn bvh_equals_brute_force_on_presets() {
     }
 }
 
-/// A scene of bare triangles with the default material.
-pub fn soup_scene(tris: &[[Vec3; 3]]) -> Scene {
-    Scene {
-        source: "soup".into(),
-        triangles: tris
-            .iter()
-            .map(|p| Triangle {
-                positions: *p,
-                normals: [Vec3::Z; 3],
-                uvs: [Vec2::ZERO; 3],
-                material: 0,
-            })
-            .collect(),
-        materials: vec![Material::default()],
-        textures: vec![],
-        images: vec![],
-        camera: None,
-        environment: Vec3::ZERO,
-        environment_map: None,
-        environment_sampling: blueshift_scene::EnvSampling::Importance,
-        lights: vec![],
-        warnings: vec![],
-    }
-}
-
 #[test]
 fn bvh_equals_brute_force_on_triangle_soup() {
     let tris = triangle_soup(3000, 4.0, 0.3, 9);
-    let gpu = SceneGpu::build(&soup_scene(&tris));
+    let gpu = SceneGpu::build(&Scene::from_triangles(tris.iter().copied()));
     gpu.bvh()
         .validate(
             &(0..tris.len())

@@ -1,12 +1,30 @@
 //! `assets` (regenerate everything + MANIFEST) and `manifest --check`.
 
-use std::path::Path;
+use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
 
-use crate::cli::{AssetsArgs, ManifestArgs, run_args};
 use crate::manifest::{self, Entry};
+
+/// `assets` flags.
+#[derive(Debug, clap::Args)]
+pub struct AssetsArgs {
+    /// Asset root (run from the repository root so MANIFEST commands read `assets/...`).
+    #[arg(long, default_value = "assets")]
+    pub root: PathBuf,
+}
+
+/// `manifest` flags.
+#[derive(Debug, clap::Args)]
+pub struct ManifestArgs {
+    /// Verify every listed hash (the only action so far).
+    #[arg(long)]
+    pub check: bool,
+    /// The MANIFEST file; paths in it are relative to its directory.
+    #[arg(long, default_value = "assets/MANIFEST")]
+    pub manifest: PathBuf,
+}
 
 /// One generation step: the arguments, its seed, and the files it writes (relative to the
 /// asset root).
@@ -121,7 +139,12 @@ pub fn jobs(root: &str) -> Vec<Job> {
     ]
 }
 
-pub(crate) fn assets(a: &AssetsArgs) -> anyhow::Result<()> {
+/// Runs every job through `run` (which parses and runs one command line) and writes the
+/// MANIFEST of their outputs.
+pub(crate) fn assets(
+    a: &AssetsArgs,
+    run: impl Fn(Vec<String>) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
     let root = a.root.to_str().context("--root must be valid UTF-8")?;
     if root.contains(char::is_whitespace) {
         bail!("--root {root:?}: no whitespace allowed (it goes into MANIFEST commands)");
@@ -131,7 +154,7 @@ pub(crate) fn assets(a: &AssetsArgs) -> anyhow::Result<()> {
         let command = format!("blueshift-tools {}", j.args.join(" "));
         println!("$ {command}");
         let t = Instant::now();
-        run_args(j.args.clone()).with_context(|| format!("running {command}"))?;
+        run(j.args.clone()).with_context(|| format!("running {command}"))?;
         println!("  ({:.2} s)", t.elapsed().as_secs_f64());
         for o in &j.outputs {
             entries.push(Entry {
@@ -166,15 +189,4 @@ pub(crate) fn manifest(a: &ManifestArgs) -> anyhow::Result<()> {
     let n = manifest::parse(&std::fs::read_to_string(&a.manifest)?)?.len();
     println!("{}: all {n} hashes match", a.manifest.display());
     Ok(())
-}
-
-/// Runs every job whose outputs include `rel`, with the asset root replaced by `root`.
-pub fn regenerate(rel: &str, root: &Path) -> anyhow::Result<()> {
-    let r = root.to_str().context("root must be UTF-8")?;
-    for j in jobs(r) {
-        if j.outputs.iter().any(|o| o == rel) {
-            return run_args(j.args);
-        }
-    }
-    bail!("no job writes {rel}")
 }

@@ -1,13 +1,46 @@
 //! `dither`: threshold an image against a tiled mask (see `crate::dither` for the rule).
 
+use std::path::PathBuf;
+
 use anyhow::Context;
 use blueshift_analysis::Gray;
 use blueshift_analysis::assets::{Mask, load_mask};
+use clap::ValueEnum;
 
 use super::{ensure_parent, save_png};
-use crate::cli::{DitherArgs, GrayIs};
 use crate::dither::dither_image;
 use crate::voidcluster;
+
+/// How image values map to the thesis' gray level `p` (probability of black).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum GrayIs {
+    /// Pixel value is brightness: `p = 1 - value` (output looks like the input).
+    Brightness,
+    /// Pixel value is `p` itself (black where mask <= value).
+    Darkness,
+}
+
+/// `dither` flags.
+#[derive(Debug, clap::Args)]
+pub struct DitherArgs {
+    /// Grayscale or RGB image (RGB is reduced to luminance).
+    pub image: PathBuf,
+    /// Mask `.r16`.
+    #[arg(long)]
+    pub mask: PathBuf,
+    /// Output PNG.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Meaning of pixel values.
+    #[arg(long, value_enum, default_value_t = GrayIs::Brightness)]
+    pub gray_is: GrayIs,
+    /// Write the mask's result, a Bayer and a white-noise mask of the same side, side by side.
+    #[arg(long)]
+    pub compare: bool,
+    /// Seed of the white-noise mask for --compare.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
 
 /// Places images side by side with an 8-pixel mid-gray gap.
 pub(crate) fn side_by_side(imgs: &[image::GrayImage]) -> image::GrayImage {

@@ -1,18 +1,109 @@
 //! `fast` (optimise a FAST texture) and `fast-bench` (FAST's unit benchmark).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context;
 use blueshift_assets::{StbnVolume, load_stbn, save_stbn};
+use clap::ValueEnum;
 
 use super::masks::{preview_path, save_preview};
 use super::{bar, ensure_parent};
-use crate::cli::{FastArgs, FastBenchArgs, FilterArgs, TemporalKind};
 use crate::fast::bench::{Integrand, filtered_rmse, white_ranks};
 use crate::fast::{
     Filter, Model, Params, Temporal, Volume, anneal, pair_loss, predicted_mse, stratified_init,
 };
+
+/// Temporal filter kinds (`fast`, `fast-bench`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TemporalKind {
+    /// Exponential moving average (TAA), `--alpha`.
+    Ema,
+    /// Gaussian over frames, `--sigma-t`.
+    Gauss,
+}
+
+/// The filter a FAST texture is optimised for / measured with.
+#[derive(Debug, clap::Args)]
+pub struct FilterArgs {
+    /// Spatial Gaussian sigma in pixels (> 0).
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub sigma: f64,
+    /// Temporal filter.
+    #[arg(long, value_enum, default_value_t = TemporalKind::Ema)]
+    pub temporal: TemporalKind,
+    /// EMA blend factor in (0, 1].
+    #[arg(long, default_value_t = 0.1, allow_negative_numbers = true)]
+    pub alpha: f64,
+    /// Temporal Gaussian sigma in frames (> 0; `--temporal gauss`).
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub sigma_t: f64,
+}
+
+/// `fast` flags.
+#[derive(Debug, clap::Args)]
+pub struct FastArgs {
+    /// Side of each slice (power of two, 4..=256).
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Slices (power of two, <= 256 and <= size^2).
+    #[arg(long, default_value_t = 32)]
+    pub frames: usize,
+    /// 1: scalar values; 2: 2D vectors (rank r = centre of cell (r mod N, r div N)).
+    #[arg(long, default_value_t = 1)]
+    pub dims: usize,
+    #[command(flatten)]
+    pub filter: FilterArgs,
+    /// Integrands the loss models: `shared` (the paper: one step integrand for every voxel)
+    /// or `pixel` (an independent one per pixel: filtered texture energy between pixels).
+    #[arg(long, value_enum, default_value_t = crate::fast::Model::Shared)]
+    pub model: crate::fast::Model,
+    /// Swap proposals per voxel over the whole run (1024: about 2 min for 64x64x32 on two
+    /// free cores).
+    #[arg(long, default_value_t = 1024)]
+    pub iterations: u32,
+    /// Annealing rounds (temperature steps).
+    #[arg(long, default_value_t = 64)]
+    pub rounds: u32,
+    /// PRNG seed (initial texture and proposals).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output `.r16` (slices of ranks, as `stbn64x32.r16`) plus a `.png` preview.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `fast-bench` flags.
+#[derive(Debug, clap::Args)]
+pub struct FastBenchArgs {
+    /// FAST textures `.r16` (comma-separated; rows named by file name).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "assets/masks/fast64x32_s1_a0.1.r16"
+    )]
+    pub fast: Vec<PathBuf>,
+    /// STBN texture `.r16` to compare with (scalar only).
+    #[arg(long, default_value = "assets/masks/stbn64x32.r16")]
+    pub stbn: PathBuf,
+    /// Side of both textures.
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Values per pixel of the FAST texture (1 or 2; with 2, STBN is skipped).
+    #[arg(long, default_value_t = 1)]
+    pub dims: usize,
+    #[command(flatten)]
+    pub filter: FilterArgs,
+    /// Random integrands per kind.
+    #[arg(long, default_value_t = 256)]
+    pub trials: u32,
+    /// Integrand kinds (default: all).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub integrand: Vec<crate::fast::bench::Integrand>,
+    /// Seed of the integrands, the white-noise texture and the stratified start.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
 
 fn temporal(f: &FilterArgs) -> Temporal {
     match f.temporal {

@@ -1,5 +1,7 @@
 //! `figures`: the thesis-style comparison figures (white / blue / Bayer).
 
+use std::path::PathBuf;
+
 use anyhow::Context;
 use blueshift_analysis::assets::Mask;
 use blueshift_analysis::{
@@ -8,9 +10,22 @@ use blueshift_analysis::{
 
 use super::spectrum::normalised_series;
 use super::{save_png, upscale};
-use crate::cli::FiguresArgs;
 use crate::dither::dither_image;
 use crate::voidcluster::{self, VcParams};
+
+/// `figures` flags.
+#[derive(Debug, clap::Args)]
+pub struct FiguresArgs {
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "out/figures")]
+    pub out: PathBuf,
+    /// Mask side.
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Seed of the blue and white masks.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
 
 /// Stacks images vertically with an 8-pixel mid-gray gap.
 fn stacked(imgs: &[image::GrayImage]) -> image::GrayImage {

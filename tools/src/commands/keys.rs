@@ -1,12 +1,44 @@
 //! `keys`: optimise HBO+19 key tables (one file per spp).
 
+use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
 
 use super::{bar, ensure_parent};
-use crate::cli::KeysArgs;
 use crate::keys::{KeysParams, Problem, anneal};
+
+/// `keys` flags.
+#[derive(Debug, clap::Args)]
+pub struct KeysArgs {
+    /// Tile edge (power of two, 16..=256).
+    #[arg(long, default_value_t = 128)]
+    pub tile: u32,
+    /// Comma-separated sample counts (powers of two); one table each.
+    #[arg(long, default_value = "1")]
+    pub spp: String,
+    /// Optimised sample dimensions (even: pairs); later ones fall back to Owen-Sobol.
+    #[arg(long, default_value_t = 8)]
+    pub dims: u32,
+    /// Test integrands per dimension pair (half Heaviside steps, half Gaussians).
+    #[arg(long, default_value_t = 16)]
+    pub integrands: u32,
+    /// Annealing proposals per pixel.
+    #[arg(long, default_value_t = 128)]
+    pub iterations: u32,
+    /// Temperature steps.
+    #[arg(long, default_value_t = 64)]
+    pub rounds: u32,
+    /// Error-distance scale of the energy (smaller: only near-equal errors repel).
+    #[arg(long, default_value_t = 1.0)]
+    pub sigma_s: f32,
+    /// PRNG seed (integrands, initial keys, proposals).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output directory: writes `hbo19_t<tile>_spp<n>.bin` per spp.
+    #[arg(long)]
+    pub out: PathBuf,
+}
 
 /// Parses a comma-separated list of sample counts.
 fn parse_spp(s: &str) -> anyhow::Result<Vec<u32>> {

@@ -7,9 +7,59 @@ use anyhow::{Context, bail};
 use blueshift_analysis::assets::{Mask, StbnVolume, save_mask, save_stbn};
 
 use super::{bar, ensure_parent, save_png};
-use crate::cli::{BayerArgs, MaskArgs, WhiteArgs};
 use crate::quality::mask_quality;
 use crate::voidcluster::{self, VcParams};
+
+/// `mask` flags.
+#[derive(Debug, clap::Args)]
+pub struct MaskArgs {
+    /// Side of the mask (power of two, 4..=256).
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Gaussian energy sigma in pixels.
+    #[arg(long, default_value_t = 1.9)]
+    pub sigma: f64,
+    /// Initial density of the binary pattern.
+    #[arg(long, default_value_t = 0.1)]
+    pub density: f64,
+    /// Number of slices; > 1 makes a spatio-temporal mask.
+    #[arg(long, default_value_t = 1)]
+    pub frames: usize,
+    /// Temporal energy sigma in frames (spatio-temporal only).
+    #[arg(long, default_value_t = 1.9)]
+    pub sigma_t: f64,
+    /// PRNG seed of the initial pattern.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output `.r16`; a 16-bit PNG preview is written beside it (`.png`).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `bayer` flags.
+#[derive(Debug, clap::Args)]
+pub struct BayerArgs {
+    /// Side (power of two, 2..=256).
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// Output `.r16` (plus `.png` preview).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `white` flags.
+#[derive(Debug, clap::Args)]
+pub struct WhiteArgs {
+    /// Side (power of two, 2..=256).
+    #[arg(long, default_value_t = 64)]
+    pub size: usize,
+    /// PRNG seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output `.r16` (plus `.png` preview).
+    #[arg(long)]
+    pub out: PathBuf,
+}
 
 /// The PNG preview path beside an `.r16`.
 pub(crate) fn preview_path(out: &Path) -> PathBuf {

@@ -7,6 +7,7 @@ pub(crate) mod figures;
 pub mod keys;
 pub(crate) mod masks;
 pub(crate) mod retarget;
+pub(crate) mod scene;
 pub mod sky;
 pub(crate) mod spectrum;
 

@@ -1,13 +1,52 @@
 //! `retarget`: compute and write a retargeting table.
 
+use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
 use blueshift_analysis::assets::{RetargetTable, load_mask, save_retarget};
+use clap::ValueEnum;
 
 use super::{bar, ensure_parent, save_png};
-use crate::cli::{RetargetArgs, Solver};
 use crate::retarget::{Problem, Summary, anneal, default_shift, exact};
+
+/// Retarget solvers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Solver {
+    /// Min-cost bipartite matching (optimal).
+    Exact,
+    /// Simulated annealing (the paper's method).
+    Anneal,
+}
+
+/// `retarget` flags.
+#[derive(Debug, clap::Args)]
+pub struct RetargetArgs {
+    /// Mask `.r16`.
+    #[arg(long)]
+    pub mask: PathBuf,
+    /// Per-frame shift `SX,SY`; default `(round(N/g), round(N/g^2))`, g the plastic number.
+    #[arg(long)]
+    pub shift: Option<String>,
+    /// Maximum Euclidean displacement.
+    #[arg(long, default_value_t = 6)]
+    pub radius: u32,
+    /// Solver.
+    #[arg(long, value_enum, default_value_t = Solver::Exact)]
+    pub solver: Solver,
+    /// PRNG seed (annealing).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Annealing proposals (default 15000 N^2).
+    #[arg(long)]
+    pub proposals: Option<u64>,
+    /// Output `.bin`.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Optional PNG view: R = dx, G = dy, mapped from `[-R, R]` to `[0, 255]`.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+}
 
 /// Parses `SX,SY`.
 pub(crate) fn parse_shift(s: &str) -> anyhow::Result<(u32, u32)> {

@@ -2,11 +2,31 @@
 //! A blue gradient, a warm glow and a small bright sun above a grey ground: enough contrast
 //! for sharp shadows and for importance sampling to matter, small enough to commit.
 
+use std::path::PathBuf;
+
 use anyhow::{Context, bail};
 use blueshift_scene::{env_direction, env_uv};
 use glam::{Vec2, Vec3};
 
-use crate::cli::SkyArgs;
+/// `sky` flags.
+#[derive(Debug, clap::Args)]
+pub struct SkyArgs {
+    /// Map width in texels (height is half of it).
+    #[arg(long, default_value_t = 256)]
+    pub width: u32,
+    /// Sun elevation above the horizon, degrees.
+    #[arg(long, default_value_t = 35.0, allow_negative_numbers = true)]
+    pub sun_elevation: f32,
+    /// Sun azimuth from -Z towards +X, degrees.
+    #[arg(long, default_value_t = 150.0, allow_negative_numbers = true)]
+    pub sun_azimuth: f32,
+    /// Radiance of the sun disc (1.5 degrees in radius).
+    #[arg(long, default_value_t = 1500.0)]
+    pub sun_radiance: f32,
+    /// Output `.hdr`.
+    #[arg(long)]
+    pub out: PathBuf,
+}
 
 /// Angular radius of the sun disc, degrees.
 const SUN_RADIUS_DEG: f32 = 1.5;

@@ -1,7 +1,7 @@
 //! `spectrum`: spectra, radial profiles and LF of images and masks.
 
 use std::collections::HashSet;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use blueshift_analysis::assets::{load_mask, load_stbn};
@@ -10,8 +10,28 @@ use blueshift_analysis::{
     plot_radial_profiles, radial_profile, save_spectrum_png,
 };
 
-use crate::cli::SpectrumArgs;
 use crate::quality::HIGH_BAND;
+
+/// `spectrum` flags.
+#[derive(Debug, clap::Args)]
+pub struct SpectrumArgs {
+    /// PNG/EXR images or `.r16` masks.
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Tile side for images (Hann-windowed tiles, docs/results.md).
+    #[arg(long, default_value_t = 64)]
+    pub tile: usize,
+    /// Treat square images as periodic tiles: unwindowed periodogram of the whole image.
+    #[arg(long)]
+    pub periodic: bool,
+    /// Read `.r16` inputs as spatio-temporal volumes with this slice side (averages the
+    /// slices' periodograms).
+    #[arg(long)]
+    pub stbn_size: Option<usize>,
+}
 
 /// A spectrum with a description of how it was computed.
 pub(crate) struct Analysed {

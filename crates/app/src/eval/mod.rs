@@ -10,8 +10,8 @@ mod reference;
 mod report;
 
 use crate::GpuOpts;
+use crate::args::{SceneArgs, method_parser, scene_path};
 use crate::output::prepare_dir;
-use crate::render::{load_assets, scene_path};
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::{Gray, luminance};
 use blueshift_render::{CameraPath, Method, RenderConfig, Renderer, SeedMap};
@@ -23,36 +23,37 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
+/// `eval`'s flags: each item of a list is parsed as the single value of `render`'s flag.
 #[derive(clap::Args, Debug)]
 pub struct EvalArgs {
-    /// glTF/GLB file or bundled preset (cornell-box, textured, edges).
-    #[arg(long, default_value = "cornell-box")]
-    pub scene: String,
     #[command(flatten)]
-    pub lights: crate::lighting::LightArgs,
-    /// Comma-separated methods; `white` is always added (ratios are against it).
+    pub scene: SceneArgs,
+    /// Comma-separated methods (presets or spelled-out `sort:...` forms); `white` is always
+    /// added (ratios are against it).
     #[arg(
         long,
+        value_delimiter = ',',
+        value_parser = method_parser(),
         default_value = "sort-cycle,white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive"
     )]
-    pub methods: String,
+    pub methods: Vec<Method>,
     /// Comma-separated samples per pixel per frame.
-    #[arg(long, default_value = "1")]
-    pub spp: String,
+    #[arg(long, value_delimiter = ',', default_value = "1",
+          value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub spp: Vec<u32>,
     /// Comma-separated camera paths: static, pan:PX, orbit:DEG, swing:DEG, or keyframe files.
-    #[arg(long, default_value = "static")]
-    pub camera: String,
+    #[arg(long, value_delimiter = ',', default_value = "static", value_parser = CameraPath::parse)]
+    pub camera: Vec<CameraPath>,
     /// Comma-separated bounce counts (1 = direct light only).
-    #[arg(long, default_value = "1,8")]
-    pub bounces: String,
+    #[arg(long, value_delimiter = ',', default_value = "1,8",
+          value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub bounces: Vec<u32>,
     #[arg(long, default_value_t = 32)]
     pub frames: u32,
     #[arg(long, default_value_t = 128)]
     pub width: u32,
     #[arg(long, default_value_t = 128)]
     pub height: u32,
-    #[arg(long, default_value_t = 4)]
-    pub block: u32,
     /// Reference samples per pixel (>= 1024).
     #[arg(long, default_value_t = 1024)]
     pub reference_spp: u32,
@@ -62,8 +63,6 @@ pub struct EvalArgs {
     /// Reference cache (default: ~/.cache/blueshift/references).
     #[arg(long)]
     pub cache: Option<PathBuf>,
-    #[arg(long)]
-    pub assets: Option<PathBuf>,
     #[arg(long, default_value = "out/eval")]
     pub out: PathBuf,
     /// Also write every raw frame and its reference as EXR under OUT/frames/ (for checking the
@@ -76,38 +75,6 @@ pub struct EvalArgs {
     /// can move, is what the emitter-free metrics leave out.
     #[arg(long)]
     pub no_jitter: bool,
-    /// Frame-0 seed map of sort and sort-retarget: random, or hbo19 (HBO+19 tile positions
-    /// with the hbo19 sampler, so frame 0 is already blue; the `hbo19` method always uses them).
-    #[arg(long, default_value = "random")]
-    pub initial_seeds: String,
-}
-
-fn list<T>(s: &str, what: &str, parse: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>> {
-    let v: Vec<T> = s
-        .split(',')
-        .map(str::trim)
-        .filter(|x| !x.is_empty())
-        .map(|x| parse(x).map_err(|e| anyhow::anyhow!("--{what}: {e}")))
-        .collect::<Result<_>>()?;
-    if v.is_empty() {
-        bail!("--{what} is empty");
-    }
-    Ok(v)
-}
-
-fn number(range: std::ops::RangeInclusive<u32>) -> impl Fn(&str) -> Result<u32, String> {
-    move |s| {
-        s.parse::<u32>()
-            .ok()
-            .filter(|v| range.contains(v))
-            .ok_or_else(|| {
-                format!(
-                    "'{s}' is not a number in {}..={}",
-                    range.start(),
-                    range.end()
-                )
-            })
-    }
 }
 
 /// One configuration: everything but the method.
@@ -155,39 +122,23 @@ pub struct Run {
 
 pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     let start = Instant::now();
-    let mut methods = list(&args.methods, "methods", |s| s.parse::<Method>())?;
+    let mut methods = args.methods.clone();
     if !methods.contains(&Method::White) {
         methods.insert(0, Method::White);
     }
-    let spps = list(&args.spp, "spp", number(1..=4096))?;
-    let cameras = list(&args.camera, "camera", CameraPath::parse)?;
-    let bounces = list(&args.bounces, "bounces", number(0..=64))?;
+    let (spps, cameras, bounces) = (&args.spp, &args.camera, &args.bounces);
     if !(2..=100_000).contains(&args.frames) {
         bail!("--frames {} is outside 2..=100000", args.frames);
     }
     if !(1..=64).contains(&args.sequences) {
         bail!("--sequences {} is outside 1..=64", args.sequences);
     }
-    let scene = crate::render::load_scene(&args.scene, &args.lights)?;
-    let path = scene_path(&args.scene);
+    let scene = args.scene.load_scene()?;
+    let path = scene_path(&args.scene.scene);
     let scene_bytes =
         std::fs::read(&path).with_context(|| format!("reading scene {}", path.display()))?;
-    let assets = load_assets(&crate::render::SceneArgs {
-        scene: args.scene.clone(),
-        width: args.width,
-        height: args.height,
-        spp: 1,
-        bounces: 1,
-        block: args.block,
-        sampler: None,
-        assets: args.assets.clone(),
-        initial_seeds: args.initial_seeds.clone(),
-        lights: args.lights.clone(),
-    })?;
-    let seed_map: SeedMap = args
-        .initial_seeds
-        .parse()
-        .map_err(|e| anyhow::anyhow!("--initial-seeds: {e}"))?;
+    let assets = args.scene.load_assets()?;
+    let seed_map = args.scene.initial_seeds;
     let cache = args.cache.clone().unwrap_or_else(|| {
         std::env::var_os("HOME")
             .map_or(PathBuf::from(".cache"), PathBuf::from)
@@ -195,7 +146,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     });
     let dev = gpu.device()?;
     RenderConfig {
-        block: args.block,
+        block: args.scene.block,
         ..RenderConfig::new(args.width, args.height)
     }
     .validate(&dev)?;
@@ -203,8 +154,8 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
 
     let mut runs = Vec::new();
     let mut configs = Vec::new();
-    for camera in &cameras {
-        for &b in &bounces {
+    for camera in cameras {
+        for &b in bounces {
             let job = RefJob {
                 dev: &dev,
                 scene: &scene,
@@ -220,7 +171,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                 no_jitter: args.no_jitter,
             };
             let refs = references(&job)?;
-            for &spp in &spps {
+            for &spp in spps {
                 let config = Config {
                     camera: camera.clone(),
                     bounces: b,
@@ -281,8 +232,9 @@ fn run_method(
         let cfg = RenderConfig {
             spp: config.spp,
             bounces: config.bounces,
-            block: args.block,
+            block: args.scene.block,
             method,
+            sampler: args.scene.sampler,
             sequence: seq,
             no_jitter: args.no_jitter,
             view_size: Some(view),

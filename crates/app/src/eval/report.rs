@@ -75,8 +75,9 @@ pub fn write(
     }
     let report = json!({
         "settings": {
-            "scene": a.scene, "width": a.width, "height": a.height, "frames": a.frames,
-            "window": [a.frames / 2, a.frames - 1], "block": a.block,
+            "scene": a.scene.scene, "width": a.width, "height": a.height, "frames": a.frames,
+            "window": [a.frames / 2, a.frames - 1], "block": a.scene.block,
+            "sampler": a.scene.sampler.map(|s| s.name()),
             "reference_spp": a.reference_spp, "sequences": a.sequences, "jitter": !a.no_jitter,
             "ema_alpha": super::metrics::EMA_ALPHA, "spectrum_tile": super::metrics::TILE,
             "edge_threshold": masks::EDGE_THRESHOLD, "display_white": masks::DISPLAY_WHITE,
@@ -106,7 +107,7 @@ fn markdown(
 ) -> Result<String> {
     let mut md = String::new();
     let info = dev.info();
-    writeln!(md, "# Blueshift evaluation: {}\n", a.scene)?;
+    writeln!(md, "# Blueshift evaluation: {}\n", a.scene.scene)?;
     writeln!(
         md,
         "{}x{}, {} frames (metrics over frames {}-{}), block {} (sort-grid-*, sort-cycle: {}), reference {} spp, {} sequence(s), {}; \
@@ -116,7 +117,7 @@ fn markdown(
         a.frames,
         a.frames / 2,
         a.frames - 1,
-        a.block,
+        a.scene.block,
         blueshift_render::GRID_BLOCK,
         a.reference_spp,
         a.sequences,
@@ -131,6 +132,13 @@ fn markdown(
         commit(),
         seconds
     )?;
+    if let Some(s) = a.scene.sampler {
+        writeln!(
+            md,
+            "Every method samples with `{}` (--sampler).\n",
+            s.name()
+        )?;
+    }
     writeln!(
         md,
         "Ratios are against `white` (fresh seeds every frame) of the same configuration; below 1 is better. \

@@ -9,7 +9,6 @@
 //! semaphore and signalling the image's render-finished semaphore. A screenshot reads the same
 //! buffer, so it is exactly what was presented.
 use super::controls::{Change, ERROR_SCALE, REFERENCE_SPP, Settings};
-use crate::render::{SceneArgs, config};
 use anyhow::{Context, Result};
 use blueshift_device::{
     Binding, Buffer, ComputePipeline, Device, DeviceDesc, Instance, MemoryLocation, Recorder,
@@ -18,7 +17,7 @@ use blueshift_device::{
 use blueshift_layout::params::{
     PRESENT_FLAG_BGRA, PRESENT_FLAG_ERROR, PRESENT_FLAG_SPLIT, PresentParams,
 };
-use blueshift_render::{FrameStats, Method, MethodAssets, Renderer};
+use blueshift_render::{FrameStats, Method, MethodAssets, RenderConfig, Renderer};
 use blueshift_scene::{Camera, Scene};
 
 /// What stays fixed for the whole run.
@@ -26,8 +25,8 @@ use blueshift_scene::{Camera, Scene};
 pub struct Options {
     pub scene: Scene,
     pub assets: MethodAssets,
-    /// Scene, quality defaults and assets directory; width/height are set per render size.
-    pub template: SceneArgs,
+    /// Sampler and seed map; size, quality and method are set per renderer.
+    pub template: RenderConfig,
     /// Render resolution divisor (1, 2 or 4).
     pub scale: u32,
     pub vsync: bool,
@@ -364,17 +363,11 @@ fn make_renderer(
     s: &Settings,
     method: Method,
 ) -> Result<Renderer> {
-    let args = SceneArgs {
-        width: size.0,
-        height: size.1,
-        spp: s.spp,
-        bounces: s.bounces,
-        block: s.block,
+    let cfg = RenderConfig {
+        method,
         ..opts.template.clone()
     };
-    let cfg = config(&args, &method.name())?;
-    Renderer::new(dev, &opts.scene, &opts.assets, cfg)
-        .with_context(|| format!("creating the {method} renderer at {}x{}", size.0, size.1))
+    start(dev, opts, sized(cfg, size, s))
 }
 
 /// The error view's reference: Sobol, accumulating while the camera is still.
@@ -388,7 +381,31 @@ fn make_reference(
         spp: s.spp.max(REFERENCE_SPP),
         ..s.clone()
     };
-    make_renderer(dev, opts, size, &s, Method::Sobol)
+    // Sobol's own sampler, whatever `--sampler` gives the views.
+    let cfg = RenderConfig {
+        method: Method::Sobol,
+        sampler: None,
+        ..opts.template.clone()
+    };
+    start(dev, opts, sized(cfg, size, &s))
+}
+
+/// `cfg` at `size` with the quality settings of `s`.
+fn sized(cfg: RenderConfig, size: (u32, u32), s: &Settings) -> RenderConfig {
+    RenderConfig {
+        width: size.0,
+        height: size.1,
+        spp: s.spp,
+        bounces: s.bounces,
+        block: s.block,
+        ..cfg
+    }
+}
+
+fn start(dev: &Device, opts: &Options, cfg: RenderConfig) -> Result<Renderer> {
+    let (method, w, h) = (cfg.method, cfg.width, cfg.height);
+    Renderer::new(dev, &opts.scene, &opts.assets, cfg)
+        .with_context(|| format!("creating the {method} renderer at {w}x{h}"))
 }
 
 #[cfg(test)]

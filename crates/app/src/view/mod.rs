@@ -8,36 +8,33 @@ mod input;
 mod window;
 
 use crate::GpuOpts;
-use crate::render::{SceneArgs, config, load_assets, load_scene};
+use crate::args::{MethodArgs, method_help, method_parser, preset_name};
 use anyhow::{Context, Result, bail};
+use blueshift_render::Method;
 use controls::Settings;
 use std::path::PathBuf;
 
+/// `view`'s flags: the shared ones with the window's size, the view's defaults and key hints.
 #[derive(clap::Args, Debug)]
+#[command(
+    mut_arg("method", |a| a.help(format!("The view's method (the left side in split-screen). {}",
+        method_help()))),
+    mut_arg("width", |a| a.default_value("640").help("Window width in pixels")),
+    mut_arg("height", |a| a.default_value("480").help("Window height in pixels")),
+    mut_arg("spp", |a| a.help("Samples per pixel per frame (keys + and -)")),
+    mut_arg("bounces", |a| a.default_value("4")
+        .help("Path vertices after the camera (keys [ and ])")),
+    mut_arg("block", |a| a.help("Sorting block edge, 2..=8 (keys B and Shift+B)")),
+)]
 pub struct ViewArgs {
-    /// glTF/GLB file, or a bundled preset: cornell-box, textured, edges.
-    #[arg(long, default_value = "cornell-box")]
-    pub scene: String,
     #[command(flatten)]
-    pub lights: crate::lighting::LightArgs,
-    /// Window width in pixels.
-    #[arg(long, default_value_t = 640)]
-    pub width: u32,
-    /// Window height in pixels.
-    #[arg(long, default_value_t = 480)]
-    pub height: u32,
+    pub method: MethodArgs,
     /// Render resolution divisor (1, 2 or 4); the image is upscaled (nearest) to the window.
     #[arg(long, default_value_t = 2)]
     pub scale: u32,
-    /// Method of the view (the left side in split-screen).
-    #[arg(long, default_value = "sort-cycle")]
-    pub method: String,
     /// Method of the right side in split-screen.
-    #[arg(long, default_value = "white")]
-    pub method_b: String,
-    /// Frame-0 seed map: random, or hbo19 (sort / sort-retarget start from HBO+19 blue noise).
-    #[arg(long, default_value = "random")]
-    pub initial_seeds: String,
+    #[arg(long, default_value = preset_name(Method::White), value_parser = method_parser())]
+    pub method_b: Method,
     /// Start in split-screen (key S).
     #[arg(long)]
     pub split: bool,
@@ -47,18 +44,6 @@ pub struct ViewArgs {
     /// Show single frames instead of the running mean (key A).
     #[arg(long)]
     pub no_accumulation: bool,
-    /// Samples per pixel per frame (keys + and -).
-    #[arg(long, default_value_t = 1)]
-    pub spp: u32,
-    /// Path vertices after the camera (keys [ and ]).
-    #[arg(long, default_value_t = 4)]
-    pub bounces: u32,
-    /// Sorting block edge, 2..=8 (keys B and Shift+B).
-    #[arg(long, default_value_t = 4)]
-    pub block: u32,
-    /// Directory with masks and retarget tables.
-    #[arg(long)]
-    pub assets: Option<PathBuf>,
     /// FIFO presentation (default: MAILBOX where offered).
     #[arg(long)]
     pub vsync: bool,
@@ -121,37 +106,23 @@ pub fn run(gpu: &GpuOpts, args: &ViewArgs) -> Result<()> {
     if ![1, 2, 4].contains(&args.scale) {
         bail!("--scale {} must be 1, 2 or 4", args.scale);
     }
-    let size =
-        parse_size(&format!("{}x{}", args.width, args.height)).context("--width/--height")?;
+    let m = &args.method;
+    let size = parse_size(&format!("{}x{}", m.width, m.height)).context("--width/--height")?;
     let script = script(args)?;
-    let parse = crate::render::parse_method;
     let settings = Settings {
-        methods: [parse(&args.method)?, parse(&args.method_b)?],
+        methods: [m.method, args.method_b],
         side: 0,
-        spp: args.spp,
-        bounces: args.bounces,
-        block: args.block,
+        spp: m.spp,
+        bounces: m.bounces,
+        block: m.scene.block,
         accumulate: !args.no_accumulation,
         split: args.split,
         error: args.error_view,
     };
-    let template = SceneArgs {
-        scene: args.scene.clone(),
-        width: size.0,
-        height: size.1,
-        spp: args.spp,
-        bounces: args.bounces,
-        block: args.block,
-        sampler: None,
-        assets: args.assets.clone(),
-        initial_seeds: args.initial_seeds.clone(),
-        lights: args.lights.clone(),
-    };
-    config(&template, &args.method)?;
     let opts = gpu::Options {
-        scene: load_scene(&args.scene, &args.lights)?,
-        assets: load_assets(&template)?,
-        template,
+        scene: m.scene.load_scene()?,
+        assets: m.scene.load_assets()?,
+        template: m.config(),
         scale: args.scale,
         vsync: args.vsync,
         device_index: gpu.device_index,

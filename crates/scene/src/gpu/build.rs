@@ -4,7 +4,7 @@ use super::lights::{EnvGpu, non_triangle_lights};
 use super::*;
 use crate::geometry::{luminance, srgb_to_linear};
 use crate::scene::{Scene, Wrap, check_sizes};
-use crate::{Aabb, Bvh, Result, intersect};
+use crate::{Bvh, Result, intersect};
 use rayon::prelude::*;
 
 /// Everything the GPU needs, ready to upload. Triangle-indexed arrays are in BVH order.
@@ -257,12 +257,6 @@ impl SceneGpu {
         }
     }
 
-    /// Bounds of GPU triangle `i`.
-    pub fn triangle_bounds(&self, i: usize) -> Aabb {
-        let t = &self.triangles[i];
-        Aabb::from_points(&[t.v0, t.v0 + t.e1, t.v0 + t.e2])
-    }
-
     /// The buffers to upload, in a fixed order (nodes, triangles, shading, materials,
     /// textures, texels, lights).
     pub fn buffers(&self) -> [GpuBuffer<'_>; 7] {
@@ -320,11 +314,6 @@ impl SceneGpu {
                 bytes: bytes(&self.lights, z_light),
             },
         ]
-    }
-
-    /// Total bytes of all buffers.
-    pub fn byte_size(&self) -> u64 {
-        self.buffers().iter().map(|b| b.bytes.len() as u64).sum()
     }
 
     /// Errors with the first buffer larger than `maxStorageBufferRange`.
