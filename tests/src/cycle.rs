@@ -3,8 +3,8 @@
 use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_permute::{
-    CYCLE_FRAMES, CycleInput, PermutePasses, Screen, SortInput, cycle_keys_cpu, is_permutation_of,
-    sort_seeds_cpu, with_cycle,
+    CYCLE_FRAMES, CycleInput, PermutePasses, Screen, SortInput, SortVariant, cycle_keys_cpu,
+    is_permutation_of, sort_seeds_cpu, with_cycle,
 };
 use blueshift_render::{Method, RenderConfig, Renderer, default_assets_dir};
 use blueshift_scene::Scene;
@@ -68,19 +68,20 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
             rec.begin().unwrap();
             rec.begin_pass("sort_seeds").unwrap();
             let input = SortInput {
-                estimate: &est,
-                mask: &volb,
-                classes: None,
-                history: None,
-                pairs: false,
-                stats: None,
-                retarget: None,
                 cycle: Some(CycleInput {
                     history: &history,
                     accum: &accum,
                 }),
+                ..SortInput::new(&est, &volb)
             };
-            permute.sort_seeds(rec, &sp, &input, &seeds).unwrap();
+            let variant = SortVariant {
+                cycle: true,
+                large: SortVariant::large_for(sp.block),
+                ..SortVariant::PAPER
+            };
+            permute
+                .sort_seeds(rec, &sp, variant, &input, &seeds)
+                .unwrap();
             rec.submit_and_wait().unwrap();
 
             let out = cycle_keys_cpu(&cp, &lum, &means, &mut cpu_seeds, &mut cpu_hist, &vol);

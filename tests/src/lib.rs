@@ -21,6 +21,8 @@ mod cycle;
 #[cfg(test)]
 mod demod;
 #[cfg(test)]
+mod frame_memory;
+#[cfg(test)]
 mod hbo19;
 #[cfg(test)]
 mod headers;

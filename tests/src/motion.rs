@@ -5,7 +5,7 @@ use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
 use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 use blueshift_permute::{
-    PermutePasses, Reprojection, Screen, SortInput, SortParams, classify_pixels_cpu,
+    PermutePasses, Reprojection, Screen, SortInput, SortParams, SortVariant, classify_pixels_cpu,
     is_permutation_of, reproject_motion_cpu, reproject_seeds_cpu, sort_seeds_cpu,
 };
 use blueshift_render::{
@@ -111,12 +111,19 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
                 .sort_seeds(
                     rec,
                     &p,
+                    SortVariant {
+                        classes: true,
+                        history: true,
+                        pairs: true,
+                        skew: true,
+                        large: SortVariant::large_for(p.block),
+                        ..SortVariant::PAPER
+                    },
                     &SortInput {
                         estimate: &est_b,
                         mask: &mask_b,
                         classes: Some(&classes),
                         history: Some(&history_b),
-                        pairs: true,
                         stats: Some(&stats_b),
                         retarget: None,
                         cycle: None,

@@ -74,19 +74,19 @@ fn gpu_sort(
 ) {
     let est = Buffer::from_slice(gpu.dev(), "permute.estimate", &estimate(lum)).unwrap();
     let input = SortInput {
-        estimate: &est,
-        mask,
-        classes: None,
-        history: None,
-        pairs: retarget.is_none(),
-        stats: None,
         retarget,
-        cycle: None,
+        ..SortInput::new(&est, mask)
+    };
+    let variant = SortVariant {
+        pairs: retarget.is_none(),
+        retarget: retarget.is_some(),
+        large: SortVariant::large_for(sp.block),
+        ..SortVariant::PAPER
     };
     let rec = gpu.rec.as_mut().unwrap();
     rec.begin().unwrap();
     rec.begin_pass("permute.sort_seeds").unwrap();
-    passes.sort_seeds(rec, sp, &input, seeds).unwrap();
+    passes.sort_seeds(rec, sp, variant, &input, seeds).unwrap();
     rec.submit_and_wait().unwrap();
 }
 
@@ -398,7 +398,6 @@ fn every_sort_variant_matches_cpu() {
             },
             classes: v.classes.then_some(&classes_b),
             history: v.history.then_some(&history_b),
-            pairs: v.pairs,
             stats: v.skew.then_some(&stats),
             retarget: v.retarget.then_some(&out),
             cycle: v.cycle.then_some(CycleInput {
@@ -409,7 +408,7 @@ fn every_sort_variant_matches_cpu() {
         let rec = gpu.rec.as_mut().unwrap();
         rec.begin().unwrap();
         rec.begin_pass("sort_seeds").unwrap();
-        passes.sort_seeds(rec, &p, &input, &seeds).unwrap();
+        passes.sort_seeds(rec, &p, v, &input, &seeds).unwrap();
         rec.submit_and_wait().unwrap();
 
         let zeros_u = vec![0u32; px];

@@ -3,7 +3,7 @@ use crate::GpuOpts;
 use crate::args::MethodArgs;
 use crate::output::{exr_rgb32f, png_rgba8, prepare_dir, write_atomic};
 use anyhow::{Result, bail};
-use blueshift_render::{CameraPath, Renderer};
+use blueshift_render::{CameraPath, Completed, Renderer};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 
@@ -49,16 +49,29 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {msg} eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
+    // Frames stay in flight: each finished frame is written while the next ones render.
+    r.set_output_readback(args.all_frames)?;
+    let size = (cfg.width, cfg.height);
+    let finished = |done: Vec<Completed>| -> Result<()> {
+        for c in done {
+            bar.set_message(format!("trace {:.1} ms", c.stats.ms("trace")));
+            bar.inc(1);
+            if let Some(o) = &c.output {
+                write_frame(size, &args.out, c.stats.frame, &o.ldr, &o.estimate)?;
+            }
+        }
+        Ok(())
+    };
     for f in 0..args.frames {
         r.set_camera(path.camera(&base, f));
         let o = path.view_offset(f);
         r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
-        let stats = r.render_frame()?;
-        bar.set_message(format!("trace {:.1} ms", stats.ms("trace")));
-        bar.inc(1);
-        if args.all_frames || f + 1 == args.frames {
-            write_frame(&r, &args.out, f)?;
-        }
+        finished(r.submit_frame()?)?;
+    }
+    finished(r.finish_frames()?)?;
+    if !args.all_frames {
+        let last = u64::from(args.frames - 1);
+        write_frame(size, &args.out, last, &r.read_ldr()?, &r.read_estimate()?)?;
     }
     bar.finish();
     crate::check_validation(&dev)?;
@@ -74,15 +87,20 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-fn write_frame(r: &Renderer, dir: &Path, f: u32) -> Result<()> {
-    let (w, h) = (r.config().width, r.config().height);
+fn write_frame(
+    (w, h): (u32, u32),
+    dir: &Path,
+    f: u64,
+    ldr: &[u8],
+    estimate: &[[f32; 4]],
+) -> Result<()> {
     write_atomic(
         &dir.join(format!("frame_{f:05}.png")),
-        &png_rgba8(w, h, &r.read_ldr()?)?,
+        &png_rgba8(w, h, ldr)?,
     )?;
     write_atomic(
         &dir.join(format!("frame_{f:05}.exr")),
-        &exr_rgb32f(w, h, &r.read_estimate()?)?,
+        &exr_rgb32f(w, h, estimate)?,
     )?;
     Ok(())
 }

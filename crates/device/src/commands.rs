@@ -1,12 +1,19 @@
-//! Command recording: dispatches with push descriptors, barriers, copies, per-pass timestamps
-//! and crash markers (the index of the pass last started is written to a host-visible buffer, so
-//! a lost device can be blamed on a named pass, as kajiya does).
+//! Command recording: dispatches with push descriptors, copies, per-pass timestamps and crash
+//! markers (the index of the pass last started is written to a host-visible buffer, so a lost
+//! device can be blamed on a named pass, as kajiya does).
+//!
+//! Barriers come from what each command declares it reads and writes (a dispatch: its
+//! pipeline's bindings, `readonly` ones read, the others written; a copy: source read,
+//! destination written): one is recorded only before a command that reads or writes what an
+//! earlier command since the last barrier wrote, or writes what one read. Commands on
+//! unrelated resources run without one between them.
 use crate::device::Device;
 use crate::error::{DeviceError, Result, VkContext};
 use crate::memory::{Buffer, Image};
 use crate::pipeline::{BindingKind, ComputePipeline};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
+use std::collections::HashSet;
 
 /// A resource bound to a binding of a dispatch.
 #[derive(Debug, Clone, Copy)]
@@ -38,22 +45,29 @@ const MAX_PASSES: u32 = 64;
 /// One reusable command buffer with its fence, timestamp pool and crash-marker buffer.
 pub struct Recorder {
     pub(crate) dev: Device,
-    pool: vk::CommandPool,
+    pub(crate) pool: vk::CommandPool,
     pub cmd: vk::CommandBuffer,
-    fence: vk::Fence,
-    queries: vk::QueryPool,
-    markers: Buffer,
-    passes: Vec<String>,
-    open_pass: Option<usize>,
-    recording: bool,
+    pub(crate) fence: vk::Fence,
+    pub(crate) queries: vk::QueryPool,
+    pub(crate) markers: Buffer,
+    pub(crate) passes: Vec<String>,
+    pub(crate) open_pass: Option<usize>,
+    pub(crate) recording: bool,
     /// Testing hook (`BLUESHIFT_TEST_DEVICE_LOST=PASS`): a submission containing pass PASS
     /// reports a lost device, as if the GPU hung in PASS (markers stop after it).
-    lose_in_pass: Option<String>,
+    pub(crate) lose_in_pass: Option<String>,
     /// Testing hook (`BLUESHIFT_TEST_SUBMIT_OOM=PASS`): a submission containing pass PASS
     /// reports running out of device memory, through the same error path as the driver's.
-    oom_in_pass: Option<String>,
+    pub(crate) oom_in_pass: Option<String>,
     /// The hook's pass was recorded in this submission; later passes write no marker.
-    markers_frozen: bool,
+    pub(crate) markers_frozen: bool,
+    /// Resources (raw handles) written and read since the last barrier.
+    pub(crate) written: HashSet<u64>,
+    pub(crate) read: HashSet<u64>,
+    /// Barriers recorded in this submission.
+    pub(crate) barriers: u32,
+    /// Submitted and not yet waited for.
+    pub(crate) pending: bool,
 }
 
 impl std::fmt::Debug for Recorder {
@@ -123,14 +137,23 @@ impl Recorder {
                     .ok()
                     .filter(|p| !p.is_empty()),
                 markers_frozen: false,
+                written: HashSet::new(),
+                read: HashSet::new(),
+                barriers: 0,
+                pending: false,
             })
         }
     }
 
-    /// Starts recording (resets the command buffer and timestamps).
+    /// Starts recording (resets the command buffer and timestamps), after waiting for this
+    /// recorder's previous submission if it is still pending. The first command is a barrier:
+    /// everything in this submission comes after everything submitted earlier on the queue.
     pub fn begin(&mut self) -> Result<()> {
+        if self.pending {
+            self.wait()?;
+        }
         let d = self.dev.raw();
-        // SAFETY: the previous submission was waited for in `submit_and_wait`.
+        // SAFETY: the previous submission was waited for above.
         unsafe {
             d.reset_command_buffer(self.cmd, vk::CommandBufferResetFlags::empty())
                 .vk("vkResetCommandBuffer")?;
@@ -146,6 +169,8 @@ impl Recorder {
         self.open_pass = None;
         self.recording = true;
         self.markers_frozen = false;
+        self.barriers = 0;
+        self.barrier();
         Ok(())
     }
 
@@ -174,7 +199,8 @@ impl Recorder {
         let write_marker = !self.markers_frozen;
         self.markers_frozen |= self.lose_in_pass.as_deref() == Some(name);
         let d = self.dev.raw();
-        // SAFETY: recording; the marker buffer is TRANSFER_DST.
+        // SAFETY: recording; the marker buffer is TRANSFER_DST. The markers are outside the
+        // barrier bookkeeping: a diagnostic must not order the passes.
         unsafe {
             if write_marker {
                 d.cmd_fill_buffer(self.cmd, self.markers.raw, 0, 4, i + 1);
@@ -186,7 +212,6 @@ impl Recorder {
                 2 * i,
             );
         }
-        self.barrier();
         Ok(())
     }
 
@@ -207,8 +232,28 @@ impl Recorder {
         Ok(())
     }
 
-    /// A full memory barrier between everything before and after (passes are few and large).
+    /// Records a barrier first if a command reading `reads` and writing `writes` depends on a
+    /// command recorded since the last one (read or write after write, write after read).
+    pub fn access(&mut self, reads: &[u64], writes: &[u64]) {
+        let after_write = reads.iter().chain(writes).any(|r| self.written.contains(r));
+        if after_write || writes.iter().any(|w| self.read.contains(w)) {
+            self.barrier();
+        }
+        self.read.extend(reads);
+        self.written.extend(writes);
+    }
+
+    /// Barriers recorded since [`Self::begin`] (the one `begin` records included).
+    pub fn barrier_count(&self) -> u32 {
+        self.barriers
+    }
+
+    /// A full memory barrier between everything before and after (passes are few and large,
+    /// so a global barrier costs no more than per-resource ones).
     pub fn barrier(&mut self) {
+        self.written.clear();
+        self.read.clear();
+        self.barriers += 1;
         let mb = vk::MemoryBarrier::default()
             .src_access_mask(vk::AccessFlags::MEMORY_WRITE)
             .dst_access_mask(vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE);
@@ -233,7 +278,7 @@ impl Recorder {
 
     /// Binds `resources` by name (the names the pipeline's shader declares, checked at pipeline
     /// creation; every binding exactly once), pushes constants and dispatches `groups`
-    /// workgroups, followed by a barrier.
+    /// workgroups, after a barrier if it depends on an earlier command ([`Self::access`]).
     pub fn dispatch(
         &mut self,
         pipeline: &ComputePipeline,
@@ -299,6 +344,15 @@ impl Recorder {
                 }
             }
         }
+        let (mut reads, mut writes) = (Vec::new(), Vec::new());
+        for (r, &w) in ordered.iter().zip(&pipeline.writes) {
+            let handle = match r {
+                Res::Buffer(b) => vk::Handle::as_raw(b.raw),
+                Res::Image(i) => vk::Handle::as_raw(i.raw),
+            };
+            if w { &mut writes } else { &mut reads }.push(handle);
+        }
+        self.access(&reads, &writes);
         let (mut bi, mut ii) = (0, 0);
         let writes: Vec<_> = pipeline
             .bindings
@@ -338,148 +392,16 @@ impl Recorder {
             }
             d.cmd_dispatch(self.cmd, groups[0], groups[1], groups[2]);
         }
-        self.barrier();
         Ok(())
-    }
-
-    /// Ends recording, submits, waits, and returns the per-pass times.
-    pub fn submit_and_wait(&mut self) -> Result<Vec<PassTime>> {
-        self.submit_and_wait_with(&[], &[])
-    }
-
-    /// Like [`Self::submit_and_wait`], waiting for the `wait` semaphores (each at its stage)
-    /// and signalling `signal` (a swapchain image's acquire and render-finished semaphores).
-    pub fn submit_and_wait_with(
-        &mut self,
-        wait: &[(vk::Semaphore, vk::PipelineStageFlags)],
-        signal: &[vk::Semaphore],
-    ) -> Result<Vec<PassTime>> {
-        self.check_recording()?;
-        if self.open_pass.is_some() {
-            self.end_pass()?;
-        }
-        self.recording = false;
-        let d = self.dev.raw();
-        let cmds = [self.cmd];
-        let (wait_sems, wait_stages): (Vec<_>, Vec<_>) = wait.iter().copied().unzip();
-        let submit = vk::SubmitInfo::default()
-            .command_buffers(&cmds)
-            .wait_semaphores(&wait_sems)
-            .wait_dst_stage_mask(&wait_stages)
-            .signal_semaphores(signal);
-        // SAFETY: the command buffer is complete; the fence is unsignalled.
-        let run = unsafe {
-            d.end_command_buffer(self.cmd)
-                .vk("vkEndCommandBuffer")
-                .and_then(|_| {
-                    d.queue_submit(self.dev.queue(), &[submit], self.fence)
-                        .vk("vkQueueSubmit")
-                })
-                .and_then(|_| {
-                    d.wait_for_fences(&[self.fence], true, u64::MAX)
-                        .vk("vkWaitForFences")
-                })
-                .and_then(|_| d.reset_fences(&[self.fence]).vk("vkResetFences"))
-        };
-        let run = match (&self.oom_in_pass, run) {
-            (Some(p), Ok(())) if self.passes.contains(p) => Err(DeviceError::Vulkan {
-                what: "vkQueueSubmit, simulated by BLUESHIFT_TEST_SUBMIT_OOM".into(),
-                result: vk::Result::ERROR_OUT_OF_DEVICE_MEMORY,
-            }),
-            (_, run) => run,
-        };
-        match &run {
-            Err(DeviceError::Vulkan { what, result })
-                if *result == vk::Result::ERROR_DEVICE_LOST =>
-            {
-                return Err(self.device_lost(what));
-            }
-            Err(DeviceError::Vulkan { what, result })
-                if matches!(
-                    *result,
-                    vk::Result::ERROR_OUT_OF_DEVICE_MEMORY | vk::Result::ERROR_OUT_OF_HOST_MEMORY
-                ) =>
-            {
-                return Err(DeviceError::SubmitOutOfMemory {
-                    passes: self.passes.join(", "),
-                    what: what.clone(),
-                    result: *result,
-                });
-            }
-            Ok(()) if self.markers_frozen => {
-                return Err(self.device_lost("simulated by BLUESHIFT_TEST_DEVICE_LOST"));
-            }
-            _ => {}
-        }
-        run?;
-        self.timings()
-    }
-
-    fn device_lost(&self, what: &str) -> DeviceError {
-        let marker = self
-            .markers
-            .read::<u32>()
-            .ok()
-            .and_then(|m| m.first().copied())
-            .unwrap_or(0);
-        let pass = match marker {
-            0 => "(before any pass)".to_string(),
-            m => self
-                .passes
-                .get(m as usize - 1)
-                .cloned()
-                .unwrap_or_else(|| format!("#{m}")),
-        };
-        DeviceError::DeviceLost {
-            pass,
-            what: what.to_string(),
-        }
-    }
-
-    fn timings(&self) -> Result<Vec<PassTime>> {
-        let n = self.passes.len();
-        if n == 0 {
-            return Ok(Vec::new());
-        }
-        let mut data = vec![0u64; 2 * n];
-        // SAFETY: all queries in range were written by the completed submission.
-        unsafe {
-            self.dev
-                .raw()
-                .get_query_pool_results(
-                    self.queries,
-                    0,
-                    &mut data,
-                    vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
-                )
-                .vk("vkGetQueryPoolResults")?;
-        }
-        let info = self.dev.info();
-        let bits = info.timestamp_valid_bits;
-        let mask = if bits >= 64 {
-            u64::MAX
-        } else {
-            (1u64 << bits) - 1
-        };
-        let period = info.timestamp_period_ns as f64;
-        Ok(self
-            .passes
-            .iter()
-            .enumerate()
-            .map(|(i, name)| {
-                let ticks = (data[2 * i + 1] & mask).wrapping_sub(data[2 * i] & mask) & mask;
-                PassTime {
-                    name: name.clone(),
-                    ms: ticks as f64 * period * 1e-6,
-                }
-            })
-            .collect())
     }
 }
 
 impl Drop for Recorder {
     fn drop(&mut self) {
-        // SAFETY: submissions are always waited for; nothing is pending.
+        if self.pending {
+            let _ = self.wait();
+        }
+        // SAFETY: the last submission was waited for above.
         unsafe {
             let d = self.dev.raw();
             d.destroy_query_pool(self.queries, None);

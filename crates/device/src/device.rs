@@ -52,6 +52,8 @@ pub(crate) struct DeviceShared {
     pub queue: vk::Queue,
     pub queue_family: u32,
     pub allocator: Mutex<Option<Allocator>>,
+    /// Every live allocation, for [`Device::allocations`].
+    pub live: Mutex<Vec<crate::memory::LiveAllocation>>,
     pub push_descriptor: khr::push_descriptor::Device,
     pub debug_utils: Option<ext::debug_utils::Device>,
     pub info: DeviceInfo,
@@ -242,6 +244,7 @@ impl Device {
                 queue,
                 queue_family: qf,
                 allocator: Mutex::new(Some(allocator)),
+                live: Mutex::new(Vec::new()),
                 push_descriptor,
                 debug_utils,
                 info,

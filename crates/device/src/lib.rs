@@ -18,6 +18,7 @@ mod instance;
 mod memory;
 mod pipeline;
 mod present;
+mod submit;
 mod surface;
 mod swapchain;
 mod transfer;
@@ -28,14 +29,14 @@ pub use device::{Device, DeviceDesc, DeviceInfo, list_physical_devices};
 pub use error::{DeviceError, Result};
 pub use gpu_allocator::MemoryLocation;
 pub use instance::{Instance, InstanceDesc, ValidationLog};
-pub use memory::{Buffer, Image};
+pub use memory::{Buffer, Image, LiveAllocation};
 pub use pipeline::{
     Binding, BindingKind, ComputePipeline, PipelineCache, ShaderInterface, check_bindings, reflect,
 };
 pub use surface::Surface;
 pub use swapchain::{
-    PRESENTABLE_FORMATS, SwapImage, Swapchain, choose_extent, choose_format, choose_image_count,
-    choose_present_mode, is_bgra,
+    ACQUIRE_SEMAPHORES, PRESENTABLE_FORMATS, SwapImage, Swapchain, choose_extent, choose_format,
+    choose_image_count, choose_present_mode, is_bgra,
 };
 
 /// Creates an instance and device in one call (the common headless case).

@@ -1,4 +1,6 @@
-//! Named buffers and storage images allocated through gpu-allocator.
+//! Named buffers and storage images allocated through gpu-allocator, each listed with its name
+//! and memory location while it lives ([`Device::allocations`]). Device-local buffers are
+//! written and read through host-visible staging copies.
 use crate::device::Device;
 use crate::error::{DeviceError, Result, VkContext};
 use ash::vk;
@@ -16,6 +18,33 @@ fn alloc_error(name: &str, bytes: u64, e: gpu_allocator::AllocationError) -> Dev
             name: name.to_string(),
             detail: other.to_string(),
         },
+    }
+}
+
+/// One live allocation: what [`Device::allocations`] lists.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LiveAllocation {
+    pub name: String,
+    pub bytes: u64,
+    pub location: MemoryLocation,
+    /// (memory handle, offset): unique among live allocations.
+    key: (u64, u64),
+}
+
+fn key(a: &Allocation) -> (u64, u64) {
+    // SAFETY: only the handle value is used, as a key.
+    (vk::Handle::as_raw(unsafe { a.memory() }), a.offset())
+}
+
+impl Device {
+    /// Every live buffer and image allocation, with its name and memory location, in the
+    /// order they were made.
+    pub fn allocations(&self) -> Vec<LiveAllocation> {
+        self.shared
+            .live
+            .lock()
+            .map(|l| l.clone())
+            .unwrap_or_default()
     }
 }
 
@@ -49,7 +78,7 @@ fn allocate(
     let alloc = guard
         .as_mut()
         .ok_or_else(|| DeviceError::Usage("allocator already destroyed".into()))?;
-    alloc
+    let a = alloc
         .allocate(&AllocationCreateDesc {
             name,
             requirements,
@@ -57,10 +86,25 @@ fn allocate(
             linear,
             allocation_scheme: AllocationScheme::GpuAllocatorManaged,
         })
-        .map_err(|e| alloc_error(name, requirements.size, e))
+        .map_err(|e| alloc_error(name, requirements.size, e))?;
+    if let Ok(mut live) = dev.shared.live.lock() {
+        live.push(LiveAllocation {
+            name: name.to_string(),
+            bytes: requirements.size,
+            location,
+            key: key(&a),
+        });
+    }
+    Ok(a)
 }
 
 fn free(dev: &Device, allocation: Option<Allocation>) {
+    if let Some(a) = &allocation
+        && let Ok(mut live) = dev.shared.live.lock()
+    {
+        let k = key(a);
+        live.retain(|l| l.key != k);
+    }
     if let (Some(a), Ok(mut guard)) = (allocation, dev.allocator())
         && let Some(alloc) = guard.as_mut()
     {
@@ -68,11 +112,13 @@ fn free(dev: &Device, allocation: Option<Allocation>) {
     }
 }
 
-/// A named buffer. Host-visible locations (`CpuToGpu`, `GpuToCpu`) are persistently mapped.
+/// A named buffer. Host-visible locations (`CpuToGpu`, `GpuToCpu`) are persistently mapped;
+/// `GpuOnly` ones are read and written through staging copies.
 pub struct Buffer {
     dev: Device,
     pub raw: vk::Buffer,
     allocation: Option<Allocation>,
+    location: MemoryLocation,
     pub size: u64,
     pub name: String,
 }
@@ -122,6 +168,7 @@ impl Buffer {
             dev: dev.clone(),
             raw,
             allocation: Some(allocation),
+            location,
             size,
             name: name.to_string(),
         })
@@ -135,20 +182,48 @@ impl Buffer {
         Ok(b)
     }
 
-    fn mapped_err(&self) -> DeviceError {
-        DeviceError::Usage(format!("buffer '{}' is not host-visible", self.name))
+    /// A device-local buffer filled with `data` through a staging copy.
+    pub fn upload<T: bytemuck::Pod>(dev: &Device, name: &str, data: &[T]) -> Result<Self> {
+        let bytes: &[u8] = bytemuck::cast_slice(data);
+        let mut b = Self::new(dev, name, bytes.len() as u64, MemoryLocation::GpuOnly)?;
+        b.write(0, data)?;
+        Ok(b)
     }
 
-    /// Writes `data` at byte `offset` (host-visible buffers only).
+    /// The buffer's memory location.
+    pub fn location(&self) -> MemoryLocation {
+        self.location
+    }
+
+    /// Whether the host can read and write the buffer directly.
+    pub fn is_mapped(&self) -> bool {
+        self.allocation
+            .as_ref()
+            .is_some_and(|a| a.mapped_ptr().is_some())
+    }
+
+    /// Writes `data` at byte `offset`: directly when host-visible, else through a staging
+    /// buffer and one submission of its own that waits (set-up and resets, not per frame).
     pub fn write<T: bytemuck::Pod>(&mut self, offset: u64, data: &[T]) -> Result<()> {
         let bytes: &[u8] = bytemuck::cast_slice(data);
-        let err = self.mapped_err();
         let name = self.name.clone();
+        if !self.is_mapped() {
+            if offset + bytes.len() as u64 > self.size {
+                return Err(DeviceError::Usage(format!(
+                    "write of {} bytes past the end of '{name}'",
+                    bytes.len()
+                )));
+            }
+            let staging = Self::from_slice(&self.dev, &format!("{name}.staging"), bytes)?;
+            return crate::Recorder::one_shot(&self.dev, "upload", |rec| {
+                rec.copy_region(&staging, self, offset, bytes.len() as u64)
+            });
+        }
         let slice = self
             .allocation
             .as_mut()
             .and_then(|a| a.mapped_slice_mut())
-            .ok_or(err)?;
+            .ok_or_else(|| DeviceError::Usage(format!("buffer '{name}' is not mapped")))?;
         let end = offset as usize + bytes.len();
         let dst = slice.get_mut(offset as usize..end).ok_or_else(|| {
             DeviceError::Usage(format!(
@@ -160,13 +235,23 @@ impl Buffer {
         Ok(())
     }
 
-    /// Reads the whole buffer as `T`s (host-visible buffers only).
+    /// Reads the whole buffer as `T`s: directly when host-visible, else through a readback
+    /// buffer and one submission of its own that waits (tests, reports, screenshots; per-frame
+    /// readbacks record their copies into the frame instead).
     pub fn read<T: bytemuck::Pod>(&self) -> Result<Vec<T>> {
+        if !self.is_mapped() {
+            let name = format!("{}.readback", self.name);
+            let readback = Self::new(&self.dev, &name, self.size, MemoryLocation::GpuToCpu)?;
+            crate::Recorder::one_shot(&self.dev, "readback", |rec| {
+                rec.copy_buffer(self, &readback, None)
+            })?;
+            return readback.read();
+        }
         let slice = self
             .allocation
             .as_ref()
             .and_then(|a| a.mapped_slice())
-            .ok_or_else(|| self.mapped_err())?;
+            .ok_or_else(|| DeviceError::Usage(format!("buffer '{}' is not mapped", self.name)))?;
         let n = slice.len() / std::mem::size_of::<T>().max(1);
         let bytes = &slice[..n * std::mem::size_of::<T>()];
         Ok(bytemuck::pod_collect_to_vec(bytes))

@@ -80,6 +80,9 @@ pub struct ShaderInterface {
     pub bindings: Vec<(u32, u32, Option<BindingKind>, String)>,
     pub push_constant_size: u32,
     pub workgroup_size: (u32, u32, u32),
+    /// Bindings of set 0 the shader declares `readonly` (never written): what a dispatch may
+    /// share with other readers without a barrier.
+    pub read_only: Vec<u32>,
 }
 
 /// Reflects set/binding/kind, push-constant size and workgroup size from SPIR-V words.
@@ -94,6 +97,7 @@ pub fn reflect(shader: &str, spirv: &[u32]) -> Result<ShaderInterface> {
         .get_descriptor_sets()
         .map_err(|e| err(format!("reading descriptor sets: {e:?}")))?;
     let mut bindings = Vec::new();
+    let mut read_only = Vec::new();
     for (set, map) in sets {
         for (binding, info) in map {
             if info.binding_count != BindingCount::One {
@@ -103,6 +107,9 @@ pub fn reflect(shader: &str, spirv: &[u32]) -> Result<ShaderInterface> {
                     binding,
                     detail: "arrays of descriptors are not supported (no descriptor indexing on lavapipe)".into(),
                 });
+            }
+            if set == 0 && never_written(&refl.0, binding) {
+                read_only.push(binding);
             }
             let name = resource_name(&refl.0, set, binding).unwrap_or(info.name);
             bindings.push((set, binding, BindingKind::from_reflect(info.ty), name));
@@ -117,7 +124,77 @@ pub fn reflect(shader: &str, spirv: &[u32]) -> Result<ShaderInterface> {
         bindings,
         push_constant_size,
         workgroup_size,
+        read_only,
     })
+}
+
+/// Whether the set-0 resource at `binding` is `NonWritable`: the variable itself (images), or
+/// every member of its block (GLSL's `readonly buffer`).
+fn never_written(m: &Module, binding: u32) -> bool {
+    let Some(var) = binding_variable(m, 0, binding) else {
+        return false;
+    };
+    let non_writable = |i: &Instruction, at: usize| {
+        matches!(
+            i.operands.get(at),
+            Some(Operand::Decoration(Decoration::NonWritable))
+        )
+    };
+    let Some(id) = var.result_id else {
+        return false;
+    };
+    if m.annotations
+        .iter()
+        .any(|a| a.class.opcode == Op::Decorate && operand_is(a, 0, id) && non_writable(a, 1))
+    {
+        return true;
+    }
+    let Some(block) = pointee(m, var) else {
+        return false;
+    };
+    let members = m
+        .types_global_values
+        .iter()
+        .find(|i| i.class.opcode == Op::TypeStruct && i.result_id == Some(block))
+        .map_or(0, |i| i.operands.len());
+    let read_only = m
+        .annotations
+        .iter()
+        .filter(|a| {
+            a.class.opcode == Op::MemberDecorate && operand_is(a, 0, block) && non_writable(a, 2)
+        })
+        .count();
+    members > 0 && read_only == members
+}
+
+/// The `OpVariable` decorated with (set, binding).
+fn binding_variable(m: &Module, set: u32, binding: u32) -> Option<&Instruction> {
+    let decorated = |id: u32, d: Decoration, v: u32| {
+        m.annotations.iter().any(|a| {
+            operand_is(a, 0, id)
+                && matches!(a.operands.get(1), Some(Operand::Decoration(x)) if *x == d)
+                && matches!(a.operands.get(2), Some(Operand::LiteralBit32(x)) if *x == v)
+        })
+    };
+    m.types_global_values.iter().find(|i| {
+        i.class.opcode == Op::Variable
+            && i.result_id.is_some_and(|id| {
+                decorated(id, Decoration::DescriptorSet, set)
+                    && decorated(id, Decoration::Binding, binding)
+            })
+    })
+}
+
+/// The type a variable's pointer type points to.
+fn pointee(m: &Module, var: &Instruction) -> Option<u32> {
+    let pointer = var.result_type?;
+    m.types_global_values
+        .iter()
+        .find(|i| i.class.opcode == Op::TypePointer && i.result_id == Some(pointer))
+        .and_then(|i| match i.operands.get(1) {
+            Some(Operand::IdRef(t)) => Some(*t),
+            _ => None,
+        })
 }
 
 /// Whether operand `at` of `i` is the id `id`.
@@ -128,20 +205,7 @@ fn operand_is(i: &Instruction, at: usize, id: u32) -> bool {
 /// The name of the resource at (set, binding): the variable's OpName, else (an anonymous block)
 /// the OpMemberName of its block's first member.
 fn resource_name(m: &Module, set: u32, binding: u32) -> Option<String> {
-    let decorated = |id: u32, d: Decoration, v: u32| {
-        m.annotations.iter().any(|a| {
-            operand_is(a, 0, id)
-                && matches!(a.operands.get(1), Some(Operand::Decoration(x)) if *x == d)
-                && matches!(a.operands.get(2), Some(Operand::LiteralBit32(x)) if *x == v)
-        })
-    };
-    let var = m.types_global_values.iter().find(|i| {
-        i.class.opcode == Op::Variable
-            && i.result_id.is_some_and(|id| {
-                decorated(id, Decoration::DescriptorSet, set)
-                    && decorated(id, Decoration::Binding, binding)
-            })
-    })?;
+    let var = binding_variable(m, set, binding)?;
     let id = var.result_id?;
     let string = |i: &Instruction, at: usize| match i.operands.get(at) {
         Some(Operand::LiteralString(s)) if !s.is_empty() => Some(s.clone()),
@@ -155,15 +219,7 @@ fn resource_name(m: &Module, set: u32, binding: u32) -> Option<String> {
     if named.is_some() {
         return named;
     }
-    let pointer = var.result_type?;
-    let block = m
-        .types_global_values
-        .iter()
-        .find(|i| i.class.opcode == Op::TypePointer && i.result_id == Some(pointer))
-        .and_then(|i| match i.operands.get(1) {
-            Some(Operand::IdRef(t)) => Some(*t),
-            _ => None,
-        })?;
+    let block = pointee(m, var)?;
     m.debug_names
         .iter()
         .find(|i| {
@@ -255,6 +311,8 @@ pub struct ComputePipeline {
     pub layout: vk::PipelineLayout,
     set_layout: vk::DescriptorSetLayout,
     pub bindings: Vec<Binding>,
+    /// Per binding of `bindings`: whether the shader may write it (not `readonly`).
+    pub writes: Vec<bool>,
     pub push_size: u32,
     pub workgroup_size: (u32, u32, u32),
 }
@@ -345,6 +403,10 @@ impl ComputePipeline {
                 layout,
                 set_layout,
                 bindings: bindings.to_vec(),
+                writes: bindings
+                    .iter()
+                    .map(|b| !iface.read_only.contains(&b.binding))
+                    .collect(),
                 push_size,
                 workgroup_size: iface.workgroup_size,
             })

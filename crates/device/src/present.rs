@@ -67,7 +67,7 @@ impl Recorder {
     }
 
     /// Copies tightly packed 4-byte texels from `src` into `image` (in TRANSFER_DST_OPTIMAL) of
-    /// `width x height`, followed by a full barrier.
+    /// `width x height`, after a barrier if `src` was just written.
     pub fn copy_buffer_to_image(
         &mut self,
         src: &Buffer,
@@ -84,6 +84,7 @@ impl Recorder {
             )));
         }
         let region = crate::transfer::whole_image_copy(width, height);
+        self.access(&[vk::Handle::as_raw(src.raw)], &[vk::Handle::as_raw(image)]);
         // SAFETY: recording; the buffer is TRANSFER_SRC, the image in TRANSFER_DST_OPTIMAL.
         unsafe {
             self.dev.raw().cmd_copy_buffer_to_image(
@@ -94,7 +95,6 @@ impl Recorder {
                 &[region],
             );
         }
-        self.barrier();
         Ok(())
     }
 }

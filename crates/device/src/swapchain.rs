@@ -4,12 +4,16 @@
 //!
 //! Images are filled by copies (`TRANSFER_DST`), so any 8-bit RGBA/BGRA UNORM format works;
 //! sRGB is already encoded by the renderer's tonemap, so `*_SRGB` formats are never chosen.
-//! One "image acquired" semaphore suffices because every frame's submission is waited for
-//! before the next acquire; "render finished" semaphores are per swapchain image.
+//! "Image acquired" semaphores take turns, one per frame in flight ([`ACQUIRE_SEMAPHORES`]):
+//! the caller waits for the submission that waited on a semaphore before acquiring with it
+//! again; "render finished" semaphores are per swapchain image.
 use crate::device::Device;
 use crate::error::{DeviceError, Result, VkContext};
 use crate::surface::Surface;
 use ash::{khr, vk};
+
+/// Frames a caller may have in flight: the "image acquired" semaphores that take turns.
+pub const ACQUIRE_SEMAPHORES: usize = 2;
 
 /// Formats the presenter can fill with packed 8-bit colour, best first.
 pub const PRESENTABLE_FORMATS: [vk::Format; 3] = [
@@ -92,7 +96,9 @@ pub struct Swapchain {
     raw: vk::SwapchainKHR,
     images: Vec<vk::Image>,
     rendered: Vec<vk::Semaphore>,
-    acquired: vk::Semaphore,
+    acquired: [vk::Semaphore; ACQUIRE_SEMAPHORES],
+    /// The semaphore the next acquire signals.
+    next_acquired: usize,
     format: vk::SurfaceFormatKHR,
     present_mode: vk::PresentModeKHR,
     extent: vk::Extent2D,
@@ -123,12 +129,16 @@ impl Swapchain {
         }
         let loader = khr::swapchain::Device::new(dev.instance().raw(), dev.raw());
         // SAFETY: valid create info; destroyed in Drop.
-        let acquired = unsafe {
-            dev.raw()
-                .create_semaphore(&vk::SemaphoreCreateInfo::default(), None)
+        let mut acquired = [vk::Semaphore::null(); ACQUIRE_SEMAPHORES];
+        for (i, a) in acquired.iter_mut().enumerate() {
+            // SAFETY: valid create info; destroyed in Drop (a failure leaks the earlier ones).
+            *a = unsafe {
+                dev.raw()
+                    .create_semaphore(&vk::SemaphoreCreateInfo::default(), None)
+            }
+            .vk("vkCreateSemaphore")?;
+            dev.set_name(*a, &format!("swapchain.image_acquired{i}"));
         }
-        .vk("vkCreateSemaphore")?;
-        dev.set_name(acquired, "swapchain.image_acquired");
         // The surface stays unnamed: naming an instance-level object through the device makes
         // the validation layer (1.3.239) crash.
         let mut s = Self {
@@ -138,6 +148,7 @@ impl Swapchain {
             images: Vec::new(),
             rendered: Vec::new(),
             acquired,
+            next_acquired: 0,
             format: vk::SurfaceFormatKHR::default(),
             present_mode: vk::PresentModeKHR::FIFO,
             extent: vk::Extent2D::default(),
@@ -272,14 +283,18 @@ impl Swapchain {
         if self.is_paused() {
             return Ok(None);
         }
-        // SAFETY: the semaphore is unsignalled: the previous frame's submission waited on it
-        // and completed before this call.
+        let acquired = self.acquired[self.next_acquired];
+        // SAFETY: the semaphore is unsignalled: the submission that waited on it, at most
+        // ACQUIRE_SEMAPHORES acquires ago, has completed (the caller waits for it first).
         let r = unsafe {
             self.loader
-                .acquire_next_image(self.raw, u64::MAX, self.acquired, vk::Fence::null())
+                .acquire_next_image(self.raw, u64::MAX, acquired, vk::Fence::null())
         };
         let index = match r {
-            Ok((index, _suboptimal)) => index,
+            Ok((index, _suboptimal)) => {
+                self.next_acquired = (self.next_acquired + 1) % ACQUIRE_SEMAPHORES;
+                index
+            }
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => return Ok(None),
             Err(e) => return Err(e).vk("vkAcquireNextImageKHR"),
         };
@@ -293,7 +308,7 @@ impl Swapchain {
         Ok(Some(SwapImage {
             index,
             image,
-            acquired: self.acquired,
+            acquired,
             rendered,
         }))
     }
@@ -337,7 +352,10 @@ impl Drop for Swapchain {
         let _ = self.dev.wait_idle();
         self.destroy_chain();
         // SAFETY: idle device; the semaphore is not in use.
-        unsafe { self.dev.raw().destroy_semaphore(self.acquired, None) };
+        for s in self.acquired {
+            // SAFETY: idle device; the semaphores are not in use.
+            unsafe { self.dev.raw().destroy_semaphore(s, None) };
+        }
         // `surface` is dropped after this, as a field.
     }
 }

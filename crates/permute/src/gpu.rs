@@ -4,8 +4,9 @@ use crate::{PermuteError, Result, SortParams};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, PipelineCache, Recorder, Res};
 pub use blueshift_layout::variants::SortVariant;
 
-/// What the sorting pass ranks, and where it counts skewed classes. The optional inputs
-/// select the pass's variant: the paper's sorting has none of them.
+/// The buffers the sorting pass reads and writes. Which of the optional ones it binds is the
+/// caller's [`SortVariant`] (passed beside this), never guessed from which are given: each
+/// must be present exactly when the variant's extension is on.
 #[derive(Debug, Clone, Copy)]
 pub struct SortInput<'a> {
     /// vec4 (rgb, sorting key) per visible pixel.
@@ -13,24 +14,20 @@ pub struct SortInput<'a> {
     /// The N*N mask ranks; when retargeting, packed with the displacements
     /// (`pack_mask_moves`).
     pub mask: &'a Buffer,
-    /// One u32 per visible pixel from classify_pixels (below 2^26); `None`: one class per
-    /// block.
+    /// `SortVariant::classes`: one u32 per visible pixel from classify_pixels (below 2^26).
     pub classes: Option<&'a Buffer>,
-    /// One f32 per visible pixel subtracted from the key (history_key's means, NaN for the
-    /// class mean in the block); `None`: the raw key.
+    /// `SortVariant::history`: one f32 per visible pixel subtracted from the key
+    /// (history_key's means, NaN for the class mean in the block).
     pub history: Option<&'a Buffer>,
-    /// Whether `SortParams::pairs` may ask for antithetic pairs.
-    pub pairs: bool,
-    /// Two u32 the pass adds (skewed classes, classes counted) to when
+    /// `SortVariant::skew`: two u32 the pass adds (skewed classes, classes counted) to when
     /// `SortParams::count_skew` is set; the caller zeroes them (`sort_seeds_cpu` returns the
-    /// same counts). `None`: no counting.
+    /// same counts).
     pub stats: Option<&'a Buffer>,
-    /// Retarget as well, into this buffer (padded like the seeds; every seed is written);
-    /// `None`: sort in place.
+    /// `SortVariant::retarget`: the buffer the seeds are retargeted into (padded like the
+    /// seeds; every seed is written).
     pub retarget: Option<&'a Buffer>,
-    /// Run sort-cycle's point cycle first (`SortParams::cycle_*`, `mask` then holds the
-    /// spatio-temporal volume and `mask_layer` picks the slice); `None`: rank this frame's
-    /// keys and seeds.
+    /// `SortVariant::cycle`: sort-cycle's point cycle runs first (`SortParams::cycle_*`,
+    /// `mask` then holds the spatio-temporal volume and `mask_layer` picks the slice).
     pub cycle: Option<CycleInput<'a>>,
 }
 
@@ -43,19 +40,60 @@ pub struct CycleInput<'a> {
     pub accum: &'a Buffer,
 }
 
-impl SortInput<'_> {
-    /// The sorting pass's variant for this input and block edge.
-    pub fn variant(&self, block: u32) -> SortVariant {
-        SortVariant {
-            classes: self.classes.is_some(),
-            history: self.history.is_some(),
-            pairs: self.pairs,
-            skew: self.stats.is_some(),
-            large: SortVariant::large_for(block),
-            retarget: self.retarget.is_some(),
-            cycle: self.cycle.is_some(),
+impl<'a> SortInput<'a> {
+    /// The paper's inputs: keys and mask, no extension buffers.
+    pub fn new(estimate: &'a Buffer, mask: &'a Buffer) -> Self {
+        Self {
+            estimate,
+            mask,
+            classes: None,
+            history: None,
+            stats: None,
+            retarget: None,
+            cycle: None,
         }
     }
+
+    /// The optional buffers in `SORT_OPTIONAL`'s order.
+    fn optional(&self) -> [Option<&'a Buffer>; 6] {
+        [
+            self.classes,
+            self.history,
+            self.stats,
+            self.retarget,
+            self.cycle.map(|c| c.history),
+            self.cycle.map(|c| c.accum),
+        ]
+    }
+
+    /// Checks that `v` is a compiled variant for blocks of edge `block` and that the optional
+    /// buffers are exactly those it binds.
+    fn check(&self, v: SortVariant, block: u32) -> Result<()> {
+        let invalid = |what: String| Err(PermuteError::Invalid(format!("sorting pass: {what}")));
+        if SortVariant::large_for(block) && !v.large {
+            return invalid(format!("blocks of {block} need the 64-slot variant"));
+        }
+        if !SortVariant::all().contains(&v) {
+            return invalid(format!("no shader for {v:?}"));
+        }
+        for ((b, on), given) in SORT_OPTIONAL
+            .iter()
+            .zip(optional_flags(v))
+            .zip(self.optional())
+        {
+            match (on, given.is_some()) {
+                (true, false) => return invalid(format!("{} needs '{}'", v.shader(), b.name)),
+                (false, true) => return invalid(format!("{} binds no '{}'", v.shader(), b.name)),
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Whether `v` binds each of `SORT_OPTIONAL`.
+fn optional_flags(v: SortVariant) -> [bool; 6] {
+    [v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle]
 }
 
 /// Bindings of every sorting variant.
@@ -116,40 +154,36 @@ impl PermutePasses {
         })
     }
 
-    /// Records the sorting pass (in place on `seeds`, or retargeted into `input.retarget`),
-    /// in the variant `input` asks for.
+    /// Records the sorting pass in variant `v` (in place on `seeds`, or retargeted into
+    /// `input.retarget`); `input` must hold exactly the buffers `v` binds.
     pub fn sort_seeds(
         &mut self,
         rec: &mut Recorder,
         p: &SortParams,
+        v: SortVariant,
         input: &SortInput,
         seeds: &Buffer,
     ) -> Result<()> {
+        input.check(v, p.block)?;
         let mut resources: Vec<(&str, Res)> = vec![
             ("estimate", input.estimate.into()),
             ("mask", input.mask.into()),
             ("seeds", seeds.into()),
         ];
-        let optional = [
-            input.classes,
-            input.history,
-            input.stats,
-            input.retarget,
-            input.cycle.map(|c| c.history),
-            input.cycle.map(|c| c.accum),
-        ];
-        for (b, buffer) in SORT_OPTIONAL.iter().zip(optional) {
+        for (b, buffer) in SORT_OPTIONAL.iter().zip(input.optional()) {
             resources.extend(buffer.map(|buf| (b.name, buf.into())));
         }
-        let area = match input.retarget {
-            Some(_) => (p.stride, p.padded_height),
-            None => (p.width, p.height),
+        let area = match v.retarget {
+            true => (p.stride, p.padded_height),
+            false => (p.width, p.height),
         };
         let groups = block_groups(p, area)?;
         let dev = &self.dev;
-        let pipeline = self.sort.get_or_create(input.variant(p.block), |v| {
-            let on = [v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle];
-            let optional = SORT_OPTIONAL.iter().zip(on).filter(|(_, on)| *on);
+        let pipeline = self.sort.get_or_create(v, |v| {
+            let optional = SORT_OPTIONAL
+                .iter()
+                .zip(optional_flags(v))
+                .filter(|(_, on)| *on);
             let bindings: Vec<Binding> = SORT_BINDINGS
                 .into_iter()
                 .chain(optional.map(|(b, _)| *b))

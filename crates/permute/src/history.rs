@@ -42,7 +42,7 @@ impl HistoryKeys {
             size_of::<HistoryParams>(),
         )?;
         let bytes = screen.seed_count() as u64 * 8;
-        let buf = |name: &str| Buffer::new(dev, name, bytes, MemoryLocation::GpuToCpu);
+        let buf = |name: &str| Buffer::new(dev, name, bytes, MemoryLocation::GpuOnly);
         Ok(Self {
             pass,
             hist: [buf("history.a")?, buf("history.b")?],
@@ -51,7 +51,7 @@ impl HistoryKeys {
                 dev,
                 "history.mean",
                 screen.width as u64 * screen.height as u64 * 4,
-                MemoryLocation::GpuToCpu,
+                MemoryLocation::GpuOnly,
             )?,
         })
     }

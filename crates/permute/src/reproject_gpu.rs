@@ -17,8 +17,10 @@ pub struct Reprojection {
     rows: Buffer,
     holes: Buffer,
     leftovers: Buffer,
-    /// Sum x, sum y, count of the winners' motion (host-readable after the submission).
+    /// Sum x, sum y, count of the winners' motion.
     pub motion: Buffer,
+    /// [`Self::motion`] copied at the end of the reprojection, host-readable after it.
+    motion_readback: Buffer,
 }
 
 impl std::fmt::Debug for Reprojection {
@@ -60,12 +62,18 @@ impl Reprojection {
                 "permute/reproject_scatter",
                 &["holes", "leftovers", "seeds_in", "seeds_out"],
             )?,
-            src: Buffer::new(dev, "reproject.src", n * 4, MemoryLocation::CpuToGpu)?,
+            src: buf("reproject.src", n)?,
             claim: buf("reproject.claim", n)?,
             rows: buf("reproject.rows", rows)?,
             holes: buf("reproject.holes", n)?,
             leftovers: buf("reproject.leftovers", n)?,
-            motion: Buffer::new(dev, "reproject.motion", 12, MemoryLocation::GpuToCpu)?,
+            motion: buf("reproject.motion", 3)?,
+            motion_readback: Buffer::new(
+                dev,
+                "reproject.motion.readback",
+                12,
+                MemoryLocation::GpuToCpu,
+            )?,
         })
     }
 
@@ -141,12 +149,13 @@ impl Reprojection {
             push,
             pixels,
         )?;
+        rec.copy_buffer(&self.motion, &self.motion_readback, None)?;
         Ok(())
     }
 
     /// The winners' motion sums of the last submitted reprojection.
     pub fn read_motion(&self) -> Result<[i32; 3]> {
-        let m = self.motion.read::<i32>()?;
+        let m = self.motion_readback.read::<i32>()?;
         Ok([m[0], m[1], m[2]])
     }
 }

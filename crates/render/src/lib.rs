@@ -1,6 +1,7 @@
-//! The frame loop a host application drives frame by frame:
-//! `trace -> sort_seeds (retargeting on the way out) -> accumulate -> tonemap`, one submission per frame,
-//! with GPU timestamps per pass. The seed buffer is a permutation at every moment.
+//! The frame loop a host application drives frame by frame: the method decoded once into a
+//! [`plan`] of passes (`trace -> sort_seeds (retargeting on the way out) -> accumulate ->
+//! tonemap` for the paper), one submission per frame with GPU timestamps per pass, up to
+//! [`FRAMES_IN_FLIGHT`] frames in flight. The seed buffer is a permutation at every moment.
 //!
 //! ```no_run
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -23,8 +24,11 @@ mod method;
 mod method_spec;
 mod motion;
 mod pairs_gate;
+mod passes;
+mod plan;
 mod readback;
 mod seeds;
+mod slots;
 mod stats;
 mod trace_params;
 
@@ -42,19 +46,21 @@ pub use method::{
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
 pub use seeds::{SeedMap, block_seeds, initial_seeds, tile_seeds};
+pub use slots::{Completed, FRAMES_IN_FLIGHT, FrameOutput};
 pub use stats::{FrameStats, LoopCount, LoopStats};
 pub use trace_params::r2_offset;
 
-use blueshift_device::{Buffer, Device, MemoryLocation, Recorder};
+use blueshift_device::{Buffer, Device, MemoryLocation};
+use blueshift_layout::params::TRACE_STATUS_WORDS;
 pub use blueshift_layout::params::TraceLoop;
-use blueshift_layout::params::{ImageParams, TRACE_STATUS_WORDS};
-use blueshift_permute::{
-    PermutePasses, Screen, SortInput, SortParams, grid_offset, mask_offset, pair_phase,
-};
+use blueshift_permute::{PermutePasses, Screen};
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use blueshift_trace::TracePass;
 use image::ImagePasses;
+use passes::Masks;
+use plan::FramePlan;
 use seeds::{key_words, seeds_of};
+use slots::FrameSlot;
 
 /// Timing labels of every pass a permutation method adds to the path tracer, in frame order:
 /// their sum against `trace` is the method's overhead.
@@ -67,17 +73,21 @@ pub const PERMUTE_PASSES: [&str; 6] = [
     "sort_seeds",
 ];
 
-/// The renderer: scene on the device, seed buffers, images, passes.
+/// The renderer: scene on the device, seed buffers, images, passes, frame slots.
 pub struct Renderer {
     dev: Device,
     cfg: RenderConfig,
+    /// What every frame does, decoded from `cfg` whenever it changes.
+    plan: FramePlan,
     screen: Screen,
     scene: SceneBuffers,
     images: SceneImages,
     trace: TracePass,
     image: ImagePasses,
     permute: PermutePasses,
-    rec: Recorder,
+    slots: [FrameSlot; FRAMES_IN_FLIGHT],
+    /// The slot the next frame records into.
+    slot: usize,
     seeds: [Buffer; 2],
     current: usize,
     initial_seeds: Vec<u32>,
@@ -85,17 +95,11 @@ pub struct Renderer {
     trace_status: Buffer,
     /// Path vertices per trace dispatch (adapted to the counted loop iterations).
     dispatch_vertices: u32,
+    /// Samples per dispatch of the trace pass last recorded.
+    per_dispatch: u32,
     accum: Buffer,
     ldr: Buffer,
-    mask: Buffer,
-    /// The HBO+19 key table for the current spp (GPU layout of `KeyTable::gpu_words`).
-    keys: Buffer,
-    keys_spp: Option<u32>,
-    stbn: Buffer,
-    /// The FAST mask, when the asset exists.
-    fast: Option<Buffer>,
-    /// The mask packed with the retarget table (`pack_mask_moves`), for sorting that retargets.
-    mask_moves: Buffer,
+    masks: Masks,
     assets: MethodAssets,
     camera: Camera,
     view_offset: (f32, f32),
@@ -105,10 +109,10 @@ pub struct Renderer {
     sort_stats: Buffer,
     /// `sort-grid-adaptive`'s choice of pairs from the counts so far in this sequence.
     pairs_gate: PairsGate,
-    /// G-buffers and reprojection state, created when a method first needs them.
-    motion: Option<motion::MotionState>,
-    /// `sort-cycle`'s history and sorting inputs, created when a method first needs them.
-    cycle: Option<cycle::CycleState>,
+    /// G-buffers, surface classes and reprojection state, made when a plan first needs them.
+    surfaces: Option<motion::Surfaces>,
+    /// `sort-cycle`'s per-phase history, made when a plan first needs it.
+    cycle: Option<cycle::CycleHistory>,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -117,6 +121,17 @@ impl std::fmt::Debug for Renderer {
             .field("cfg", &self.cfg)
             .field("frame", &self.frame)
             .finish()
+    }
+}
+
+impl Drop for Renderer {
+    fn drop(&mut self) {
+        // The frames in flight use the buffers dropped after this.
+        for s in &mut self.slots {
+            if s.rec.is_pending() {
+                let _ = s.rec.wait();
+            }
+        }
     }
 }
 
@@ -136,59 +151,43 @@ impl Renderer {
         let initial = seeds_of(&cfg, &screen, assets)?;
         let (words, keys_spp) = key_words(&cfg, assets)?;
         let pixels = cfg.width as u64 * cfg.height as u64;
-        let host = MemoryLocation::GpuToCpu;
+        let local = |name: &str, bytes: u64| Buffer::new(dev, name, bytes, MemoryLocation::GpuOnly);
         let seeds = [
-            Buffer::from_slice(dev, "frame.seeds.a", &initial)?,
-            Buffer::from_slice(dev, "frame.seeds.b", &initial)?,
+            Buffer::upload(dev, "frame.seeds.a", &initial)?,
+            Buffer::upload(dev, "frame.seeds.b", &initial)?,
         ];
-        let r = Self {
+        Ok(Self {
             dev: dev.clone(),
+            plan: FramePlan::new(cfg.method, cfg.block),
             screen,
             scene: scene_buffers,
             images: scene_images,
             trace: TracePass::new(dev),
             image: ImagePasses::new(dev)?,
             permute: PermutePasses::new(dev)?,
-            rec: Recorder::new(dev, "frame")?,
+            slots: [FrameSlot::new(dev, 0)?, FrameSlot::new(dev, 1)?],
+            slot: 0,
             seeds,
             current: 0,
             initial_seeds: initial,
-            estimate: Buffer::new(dev, "frame.estimate", pixels * 16, host)?,
-            trace_status: Buffer::new(
-                dev,
-                "frame.trace_status",
-                4 * TRACE_STATUS_WORDS as u64,
-                host,
-            )?,
+            estimate: local("frame.estimate", pixels * 16)?,
+            trace_status: local("frame.trace_status", 4 * TRACE_STATUS_WORDS as u64)?,
             dispatch_vertices: blueshift_trace::TRACE_FIRST_DISPATCH_VERTICES,
-            accum: Buffer::new(dev, "frame.accum", pixels * 16, host)?,
-            ldr: Buffer::new(dev, "frame.ldr", pixels * 4, host)?,
-            mask: Buffer::from_slice(dev, "assets.mask", &assets.mask)?,
-            keys: Buffer::from_slice(dev, "assets.hbo19_keys", &words)?,
-            keys_spp,
-            stbn: Buffer::from_slice(dev, "assets.stbn", &assets.stbn)?,
-            fast: if assets.fast.is_empty() {
-                None
-            } else {
-                Some(Buffer::from_slice(dev, "assets.fast", &assets.fast)?)
-            },
-            mask_moves: Buffer::from_slice(
-                dev,
-                "assets.mask_moves",
-                &blueshift_permute::pack_mask_moves(&assets.mask, &assets.table)?,
-            )?,
+            per_dispatch: 0,
+            accum: local("frame.accum", pixels * 16)?,
+            ldr: local("frame.ldr", pixels * 4)?,
+            masks: Masks::new(dev, assets, &words, keys_spp)?,
             assets: assets.clone(),
             camera: scene.camera_or_default(),
             view_offset: (0.0, 0.0),
             frame: 0,
             accumulated: 0,
-            sort_stats: Buffer::new(dev, "frame.sort_stats", 8, host)?,
+            sort_stats: local("frame.sort_stats", 8)?,
             pairs_gate: PairsGate::default(),
-            motion: None,
+            surfaces: None,
             cycle: None,
             cfg,
-        };
-        Ok(r)
+        })
     }
 
     pub fn config(&self) -> &RenderConfig {
@@ -224,8 +223,10 @@ impl Renderer {
         }
     }
 
-    /// Restarts the sequence: initial seeds, frame 0, empty accumulation.
+    /// Restarts the sequence: initial seeds, frame 0, empty accumulation (after the frames
+    /// in flight, whose results are dropped).
     pub fn reset(&mut self) -> Result<()> {
+        self.finish_frames()?;
         for s in &mut self.seeds {
             s.write(0, &self.initial_seeds)?;
         }
@@ -233,7 +234,7 @@ impl Renderer {
         self.frame = 0;
         self.accumulated = 0;
         self.pairs_gate = PairsGate::default();
-        if let Some(m) = &mut self.motion {
+        if let Some(m) = &mut self.surfaces {
             m.reset();
         }
         Ok(())
@@ -246,6 +247,7 @@ impl Renderer {
             ..self.cfg.clone()
         };
         self.initial_seeds = seeds_of(&cfg, &self.screen, &self.assets)?;
+        self.plan = FramePlan::new(cfg.method, cfg.block);
         self.cfg = cfg;
         self.reset()
     }
@@ -259,153 +261,66 @@ impl Renderer {
             ..self.cfg.clone()
         };
         cfg.validate(&self.dev)?;
+        self.finish_frames()?;
         let (words, keys_spp) = key_words(&cfg, &self.assets)?;
-        if keys_spp != self.keys_spp {
+        if keys_spp != self.masks.keys_spp {
             // Tables of one asset set share tile and pairs: same size, seeds stay valid.
-            self.keys = Buffer::from_slice(&self.dev, "assets.hbo19_keys", &words)?;
-            self.keys_spp = keys_spp;
+            self.masks.keys = Buffer::upload(&self.dev, "assets.hbo19_keys", &words)?;
+            self.masks.keys_spp = keys_spp;
         }
+        self.plan = FramePlan::new(cfg.method, cfg.block);
         self.cfg = cfg;
         self.accumulated = 0;
         Ok(())
     }
 
-    /// Renders one frame: all passes in one submission; returns per-pass GPU times.
+    /// Renders one frame and waits for it: its per-pass GPU times.
     pub fn render_frame(&mut self) -> Result<FrameStats> {
+        self.submit_frame()?;
+        let done = self.finish_frames()?.pop();
+        Ok(done
+            .ok_or_else(|| RenderError::Invalid("no frame in flight".into()))?
+            .stats)
+    }
+
+    /// Records the next frame as its plan says and submits it without waiting; returns the
+    /// frames that had to be finished first (the one whose slot it takes, and the one before
+    /// it when this frame depends on what that one read back).
+    pub fn submit_frame(&mut self) -> Result<Vec<Completed>> {
+        let mut done: Vec<Completed> = self.complete_slot(self.slot)?.into_iter().collect();
+        if self.needs_previous() {
+            let previous = (self.slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT;
+            done.extend(self.complete_slot(previous)?);
+        }
+        self.make_state()?;
         let tp = self.trace_params();
-        let m = self.cfg.method;
-        let (off, mut passes) = self.prepare_frame(&tp)?;
-        let img = ImageParams {
-            width: self.cfg.width,
-            height: self.cfg.height,
-            count: self.accumulated,
-            exposure: self.cfg.exposure,
+        let (offset, times) = self.prepare_frame(&tp)?;
+        let sort = match self.plan.sort() {
+            Some(s) => Some(self.sort_params(&s, offset)?),
+            None => None,
         };
-        let (cur, next) = (self.current, 1 - self.current);
-        let mask = match m {
-            Method::Stbn => &self.stbn,
-            Method::Fast => self.fast.as_ref().ok_or_else(trace_params::no_fast)?,
-            _ => &self.mask,
-        };
-        let new_cycle = m.cycles_points() && self.cycle.is_none();
-        if new_cycle {
-            let state = cycle::CycleState::new(&self.dev, &self.screen)?;
-            self.cycle = Some(state);
+        self.slot_rec().begin()?;
+        for pass in self.plan.passes.clone() {
+            self.record_pass(pass, &tp, sort.as_ref())?;
         }
-        self.rec.begin()?;
-        self.rec.fill_buffer(&self.trace_status, 0)?;
-        if let Some(c) = self.cycle.as_ref().filter(|_| new_cycle) {
-            // Touches the whole history now (its contents are never read before written):
-            // on a CPU device the first touch of each page costs a fault, which would
-            // otherwise slow the sorting pass over the whole first cycle.
-            self.rec.fill_buffer(&c.history, 0)?;
+        self.submit_slot(self.frame, times)?;
+        if self.plan.swap_seeds {
+            self.current = 1 - self.current;
         }
-        self.rec.begin_pass("trace")?;
-        let per_dispatch = self.trace.trace(
-            &mut self.rec,
-            &tp,
-            &self.scene,
-            &self.images,
-            &self.seeds[cur],
-            mask,
-            &self.keys,
-            &self.estimate,
-            &self.trace_status,
-            self.dispatch_vertices,
-            self.cfg.loop_stats,
-        )?;
-        if m.sorts() {
-            let block = m.block(self.cfg.block);
-            let sp = if m.shifts_grid() {
-                // Sorted for the frame they will be rendered in: the next mask, the next grid.
-                let (shift, n) = (self.assets.shift, self.assets.n);
-                let next = mask_offset(self.frame + 1, shift, n);
-                let grid = grid_offset(self.frame + 1, block);
-                SortParams {
-                    pairs: m.pairs(&self.pairs_gate),
-                    phase: pair_phase(self.frame + 1, m.hashes_pair_phase()),
-                    count_skew: u32::from(m.adapts_pairs()),
-                    ..self.screen.sort_params_on_grid(block, next, grid)?
-                }
-            } else if m.cycles_points() {
-                // Fixed blocks against the next spatio-temporal slice, the point cycle first.
-                let (n, t) = (self.assets.stbn_n, self.assets.stbn_frames);
-                let cp = self.screen.cycle_params(self.frame, n, t, self.accumulated);
-                let sp = SortParams {
-                    mask_size: n,
-                    ..self.screen.sort_params(block, (0, 0))?
-                };
-                blueshift_permute::with_cycle(sp, &cp)
-            } else {
-                self.screen.sort_params(block, off)?
-            };
-            self.record_history_keys()?;
-            self.record_classes(&tp, &sp)?;
-            if sp.count_skew != 0 {
-                self.rec.fill_buffer(&self.sort_stats, 0)?;
-            }
-            let cycle = self.cycle.as_ref().filter(|_| m.cycles_points());
-            let mask = if cycle.is_some() {
-                &self.stbn
-            } else if m.retargets() {
-                &self.mask_moves
-            } else {
-                &self.mask
-            };
-            self.rec.begin_pass("sort_seeds")?;
-            let motion = self.motion.as_ref();
-            let input = SortInput {
-                estimate: &self.estimate,
-                mask,
-                classes: motion.filter(|_| m.edge_aware()).map(|st| &st.classes),
-                history: motion
-                    .and_then(|st| st.history_mean())
-                    .filter(|_| m.history_keys()),
-                pairs: m.permutation().is_some_and(|p| p.pairs != Pairs::Off),
-                stats: m.adapts_pairs().then_some(&self.sort_stats),
-                retarget: m.retargets().then_some(&self.seeds[next]),
-                cycle: cycle.map(|c| blueshift_permute::CycleInput {
-                    history: &c.history,
-                    accum: &self.accum,
-                }),
-            };
-            self.permute
-                .sort_seeds(&mut self.rec, &sp, &input, &self.seeds[cur])?;
-        }
-        self.rec.begin_pass("accumulate")?;
-        self.image
-            .accumulate(&mut self.rec, &img, &self.estimate, &self.accum)?;
-        self.rec.begin_pass("tonemap")?;
-        self.image
-            .tonemap(&mut self.rec, &img, &self.accum, &self.ldr)?;
-        passes.extend(self.rec.submit_and_wait()?);
-        if m.retargets() {
-            self.current = next;
-        }
-        if m.adapts_pairs() {
-            let s = self.sort_stats.read::<u32>()?;
-            self.pairs_gate.update([s[0], s[1]]);
-        }
-        let status = self.trace_status.read::<u32>()?;
-        let stats = FrameStats {
-            frame: self.frame,
-            passes,
-            trace_loop_iterations: status[0],
-            loops: self
-                .cfg
-                .loop_stats
-                .then(|| LoopStats::from_status(&status))
-                .flatten(),
-        };
         self.frame += 1;
         self.accumulated = self.accumulated.saturating_add(1);
-        self.dispatch_vertices = blueshift_trace::next_dispatch_vertices(
-            per_dispatch,
-            self.cfg.bounces,
-            stats.trace_loop_iterations,
-        );
-        blueshift_trace::check_loop_guard(stats.trace_loop_iterations, self.cfg.loop_guard)?;
-        Ok(stats)
+        Ok(done)
+    }
+
+    /// Makes the state the plan needs and no earlier frame made.
+    fn make_state(&mut self) -> Result<()> {
+        if self.plan.surfaces && self.surfaces.is_none() {
+            self.surfaces = Some(motion::Surfaces::new(&self.dev, &self.screen)?);
+        }
+        if self.plan.cycle_history && self.cycle.is_none() {
+            self.cycle = Some(cycle::CycleHistory::new(&self.dev, &self.screen)?);
+        }
+        Ok(())
     }
 
     /// Starts the running mean afresh with the next frame (seeds and frame index are kept):

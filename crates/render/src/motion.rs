@@ -12,9 +12,10 @@ use blueshift_permute::{
     HistoryKeys, Reprojection, Screen, follow_offset, mask_offset, mean_motion,
 };
 
-/// G-buffers (this and the previous frame), surface classes, reprojection scratch, and what
-/// the next frame needs to know about this one.
-pub(crate) struct MotionState {
+/// The surfaces on screen: G-buffers (this and the previous frame) and their classes, with the
+/// reprojection between them, the history keys, and what the next frame needs to know about
+/// this one.
+pub(crate) struct Surfaces {
     pass: GBufferPass,
     gbuffers: [Buffer; 2],
     /// Index of the G-buffer the next frame writes.
@@ -96,11 +97,11 @@ impl ClassInputs {
     }
 }
 
-impl MotionState {
+impl Surfaces {
     pub fn new(dev: &Device, screen: &Screen) -> Result<Self> {
         let pixels = screen.width as u64 * screen.height as u64;
         let g = pixels * size_of::<GBufferTexel>() as u64;
-        let gpu = MemoryLocation::GpuToCpu;
+        let gpu = MemoryLocation::GpuOnly;
         Ok(Self {
             pass: GBufferPass::new(dev)?,
             gbuffers: [
@@ -193,17 +194,10 @@ impl MotionState {
     }
 }
 
-/// The renderer's motion state, created when a method first needs it.
-fn state<'a>(
-    slot: &'a mut Option<MotionState>,
-    dev: &Device,
-    screen: &Screen,
-) -> Result<&'a mut MotionState> {
-    if slot.is_none() {
-        *slot = Some(MotionState::new(dev, screen)?);
-    }
+/// The renderer's surfaces, which `make_state` made for the plan.
+fn state(slot: &mut Option<Surfaces>) -> Result<&mut Surfaces> {
     slot.as_mut()
-        .ok_or_else(|| RenderError::Invalid("motion state missing".into()))
+        .ok_or_else(|| RenderError::Invalid("the plan needs surfaces".into()))
 }
 
 /// Parameters of the reprojection passes: the camera of the previous frame (`prev`, the
@@ -235,12 +229,13 @@ impl Renderer {
     ) -> Result<((u32, u32), Vec<PassTime>)> {
         let m = self.cfg.method;
         let (shift, n) = (self.assets.shift, self.assets.n);
-        if !m.reprojects() {
+        if !self.plan.reproject {
             return Ok((mask_offset(self.frame, shift, n), Vec::new()));
         }
-        let st = state(&mut self.motion, &self.dev, &self.screen)?;
-        self.rec.begin()?;
-        st.record_gbuffer(&mut self.rec, tp, &self.scene, &self.images)?;
+        let st = state(&mut self.surfaces)?;
+        let rec = &mut self.slots[self.slot].rec;
+        rec.begin()?;
+        st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
         let reproject = st.prev.is_some();
         // A still view's repeat of an identity reprojection is skipped: the seeds stay where
         // they are, `src` and the motion sums keep the last run's (equal) values.
@@ -251,19 +246,14 @@ impl Renderer {
         };
         if let Some(prev) = &run {
             let mp = motion_params(prev, &self.screen);
-            self.rec.begin_pass("reproject_motion")?;
+            rec.begin_pass("reproject_motion")?;
             let r = &st.reprojection;
-            r.reproject_motion(
-                &mut self.rec,
-                &mp,
-                st.previous_gbuffer(),
-                st.current_gbuffer(),
-            )?;
+            r.reproject_motion(rec, &mp, st.previous_gbuffer(), st.current_gbuffer())?;
             let (cur, next) = (self.current, 1 - self.current);
-            self.rec.begin_pass("reproject_seeds")?;
-            r.reproject_seeds(&mut self.rec, &mp, &self.seeds[cur], &self.seeds[next])?;
+            rec.begin_pass("reproject_seeds")?;
+            r.reproject_seeds(rec, &mp, &self.seeds[cur], &self.seeds[next])?;
         }
-        let times = self.rec.submit_and_wait()?;
+        let times = rec.submit_and_wait()?;
         st.prev = Some(*tp);
         st.reprojected = reproject;
         if run.is_some() {
@@ -292,14 +282,7 @@ impl Renderer {
     /// For history-key methods: records `history_key` on this frame's estimate (after the
     /// trace pass, before sorting).
     pub(crate) fn record_history_keys(&mut self) -> Result<()> {
-        if !self.cfg.method.history_keys() {
-            return Ok(());
-        }
-        let Some(st) = self.motion.as_mut() else {
-            return Err(RenderError::Invalid(
-                "history keys without motion state".into(),
-            ));
-        };
+        let st = state(&mut self.surfaces)?;
         let p = HistoryParams {
             width: self.screen.width,
             height: self.screen.height,
@@ -312,43 +295,36 @@ impl Renderer {
             Some(h) => h,
             slot @ None => slot.insert(HistoryKeys::new(&self.dev, &self.screen)?),
         };
-        self.rec.begin_pass("history_key")?;
+        let rec = &mut self.slots[self.slot].rec;
+        rec.begin_pass("history_key")?;
         // This frame's G-buffer (`current_gbuffer`, borrowed field by field): history methods
         // reproject, so prepare_frame has written it.
         let gbuffer = &st.gbuffers[1 - st.next_g];
-        h.history_key(
-            &mut self.rec,
-            &p,
-            &self.estimate,
-            &st.reprojection.src,
-            gbuffer,
-        )?;
+        h.history_key(rec, &p, &self.estimate, &st.reprojection.src, gbuffer)?;
         Ok(())
     }
 
-    /// For edge-aware methods: records the G-buffer (unless `prepare_frame` wrote it) and the
-    /// classes the sorting pass then reads.
+    /// For edge-aware methods: records the G-buffer (with `gbuffer`: when `prepare_frame` did
+    /// not write it) and the classes the sorting pass then reads.
     pub(crate) fn record_classes(
         &mut self,
         tp: &TraceParams,
         sort: &blueshift_permute::SortParams,
+        gbuffer: bool,
     ) -> Result<()> {
-        let m = self.cfg.method;
-        if !m.edge_aware() {
-            return Ok(());
-        }
-        let st = state(&mut self.motion, &self.dev, &self.screen)?;
+        let st = state(&mut self.surfaces)?;
+        let rec = &mut self.slots[self.slot].rec;
         let inputs = ClassInputs::of(tp, sort);
-        if !m.reprojects() {
+        if gbuffer {
             if st.classified == Some(inputs) {
                 return Ok(()); // a still view: last frame's G-buffer and classes stand
             }
-            st.record_gbuffer(&mut self.rec, tp, &self.scene, &self.images)?;
+            st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
         }
-        self.rec.begin_pass("classify_pixels")?;
+        rec.begin_pass("classify_pixels")?;
         self.permute
-            .classify_pixels(&mut self.rec, sort, st.current_gbuffer(), &st.classes)?;
-        st.classified = (!m.reprojects()).then_some(inputs);
+            .classify_pixels(rec, sort, st.current_gbuffer(), &st.classes)?;
+        st.classified = gbuffer.then_some(inputs);
         Ok(())
     }
 }

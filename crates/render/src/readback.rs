@@ -31,14 +31,14 @@ impl Renderer {
     }
     /// The G-buffer of the last frame, if the method uses one (edge-aware or reprojecting).
     pub fn read_gbuffer(&self) -> Result<Option<Vec<GBufferTexel>>> {
-        match &self.motion {
+        match &self.surfaces {
             Some(m) => Ok(Some(m.current_gbuffer().read()?[..self.pixels()].to_vec())),
             None => Ok(None),
         }
     }
     /// The mean motion (pixels) the last reprojection measured; (0, 0) without one.
     pub fn last_motion(&self) -> (i32, i32) {
-        self.motion.as_ref().map_or((0, 0), |m| m.last_motion)
+        self.surfaces.as_ref().map_or((0, 0), |m| m.last_motion)
     }
     /// The current (padded) seed buffer.
     pub fn read_seeds(&self) -> Result<Vec<u32>> {

@@ -31,14 +31,14 @@ impl SceneBuffers {
             .check_limits(limit)
             .map_err(|e| TraceError::Scene(e.to_string()))?;
         Ok(Self {
-            nodes: Buffer::from_slice(dev, "scene.bvh_nodes", &scene.nodes)?,
-            triangles: Buffer::from_slice(dev, "scene.bvh_triangles", &scene.triangles)?,
-            shading: Buffer::from_slice(dev, "scene.triangle_shading", &scene.shading)?,
-            materials: Buffer::from_slice(dev, "scene.materials", &scene.materials)?,
-            textures: Buffer::from_slice(dev, "scene.textures", &scene.textures)?,
-            texels: Buffer::from_slice(dev, "scene.texels", &scene.texels)?,
-            lights: Buffer::from_slice(dev, "scene.lights", &scene.lights)?,
-            info: Buffer::from_slice(dev, "scene.info", std::slice::from_ref(&scene.info))?,
+            nodes: Buffer::upload(dev, "scene.bvh_nodes", &scene.nodes)?,
+            triangles: Buffer::upload(dev, "scene.bvh_triangles", &scene.triangles)?,
+            shading: Buffer::upload(dev, "scene.triangle_shading", &scene.shading)?,
+            materials: Buffer::upload(dev, "scene.materials", &scene.materials)?,
+            textures: Buffer::upload(dev, "scene.textures", &scene.textures)?,
+            texels: Buffer::upload(dev, "scene.texels", &scene.texels)?,
+            lights: Buffer::upload(dev, "scene.lights", &scene.lights)?,
+            info: Buffer::upload(dev, "scene.info", std::slice::from_ref(&scene.info))?,
         })
     }
 }

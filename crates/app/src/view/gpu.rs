@@ -11,8 +11,8 @@
 use super::controls::{Change, ERROR_SCALE, REFERENCE_SPP, Settings};
 use anyhow::{Context, Result};
 use blueshift_device::{
-    Binding, Buffer, ComputePipeline, Device, DeviceDesc, Instance, MemoryLocation, Recorder,
-    Surface, SwapImage, Swapchain, is_bgra, vk,
+    ACQUIRE_SEMAPHORES, Binding, Buffer, ComputePipeline, Device, DeviceDesc, Instance,
+    MemoryLocation, Recorder, Surface, SwapImage, Swapchain, is_bgra, vk,
 };
 use blueshift_layout::params::{
     PRESENT_FLAG_BGRA, PRESENT_FLAG_ERROR, PRESENT_FLAG_SPLIT, PresentParams,
@@ -86,7 +86,13 @@ pub struct ViewGpu {
     a: Renderer,
     b: Option<Renderer>,
     reference: Option<Renderer>,
-    rec: Recorder,
+    /// Present submissions take turns, one per frame in flight; each turn's recorder is
+    /// waited for before its acquire semaphore is used again.
+    recs: [Recorder; ACQUIRE_SEMAPHORES],
+    turn: usize,
+    /// The latest finished frame of `a` and `b`, and the latest finished present's time.
+    finished: [Option<FrameStats>; 2],
+    present_ms: f64,
     present: ComputePipeline,
     window_buf: Option<Buffer>,
     /// Size of the last presented image (what `window_buf` holds).
@@ -141,7 +147,13 @@ impl ViewGpu {
             a,
             b: None,
             reference: None,
-            rec: Recorder::new(&dev, "view")?,
+            recs: [
+                Recorder::new(&dev, "view.0")?,
+                Recorder::new(&dev, "view.1")?,
+            ],
+            turn: 0,
+            finished: [None, None],
+            present_ms: 0.0,
             present,
             window_buf: None,
             presented: None,
@@ -167,7 +179,19 @@ impl ViewGpu {
     }
 
     /// (Re)creates every renderer the settings need at render size `size`.
+    /// Waits for the present submissions in flight (before a renderer they read is dropped).
+    fn finish_presents(&mut self) -> Result<()> {
+        for r in &mut self.recs {
+            if r.is_pending() {
+                self.present_ms = r.wait()?.iter().map(|t| t.ms).sum();
+            }
+        }
+        self.finished = [None, None];
+        Ok(())
+    }
+
     fn rebuild(&mut self, s: &Settings, size: (u32, u32)) -> Result<()> {
+        self.finish_presents()?;
         // Free the old ones first: at most one set of frame buffers exists at a time.
         self.b = None;
         self.reference = None;
@@ -187,6 +211,9 @@ impl ViewGpu {
     /// Acts on a changed setting.
     pub fn apply(&mut self, change: Change, s: &Settings) -> Result<()> {
         let size = self.render_size();
+        if change != Change::Nothing {
+            self.finish_presents()?;
+        }
         match change {
             Change::Nothing | Change::Side | Change::Accumulation | Change::Quit => {}
             Change::Method => {
@@ -246,45 +273,57 @@ impl ViewGpu {
                 self.rebuild(s, size)?;
             }
         }
+        // This turn's recorder, and with it the acquire semaphore its submission waited on.
+        if self.recs[self.turn].is_pending() {
+            self.present_ms = self.recs[self.turn].wait()?.iter().map(|t| t.ms).sum();
+        }
         let Some(img) = self.swapchain.acquire()? else {
             self.dirty = true;
             return Ok(Frame::Skipped);
         };
-        let mut stats = Vec::new();
-        for r in [Some(&mut self.a), self.b.as_mut()].into_iter().flatten() {
+        // Frames stay in flight: the stats are those of the latest finished frames.
+        let renderers = [Some(&mut self.a), self.b.as_mut()];
+        for (r, last) in renderers.into_iter().zip(&mut self.finished) {
+            let Some(r) = r else { continue };
             if !s.accumulate {
                 r.restart_accumulation();
             }
             r.set_camera(camera);
-            stats.push(r.render_frame()?);
+            if let Some(c) = r.submit_frame()?.pop() {
+                *last = Some(c.stats);
+            }
         }
         let mut reference_ms = None;
         if let Some(r) = &mut self.reference {
             r.set_camera(camera);
-            reference_ms = Some(r.render_frame()?.passes.iter().map(|p| p.ms).sum());
+            if let Some(c) = r.submit_frame()?.pop() {
+                reference_ms = Some(c.stats.passes.iter().map(|p| p.ms).sum());
+            }
         }
-        let present_ms = self.compose(s, &img)?;
+        self.compose(s, &img)?;
         if !self.swapchain.present(&img)? {
             self.dirty = true;
         }
         Ok(Frame::Presented {
-            stats,
-            present_ms,
+            stats: self.finished.iter().flatten().cloned().collect(),
+            present_ms: self.present_ms,
             reference_ms,
         })
     }
 
-    /// Records and submits the present pass for `img`; returns its GPU milliseconds.
-    fn compose(&mut self, s: &Settings, img: &SwapImage) -> Result<f64> {
+    /// Records and submits the present pass for `img` (not waited for: the turn's recorder
+    /// is, before its next use).
+    fn compose(&mut self, s: &Settings, img: &SwapImage) -> Result<()> {
         let (w, h) = self.swapchain.extent();
         let bytes = w as u64 * h as u64 * 4;
         if self.window_buf.as_ref().is_none_or(|b| b.size != bytes) {
+            self.finish_presents()?;
             self.window_buf = None;
             self.window_buf = Some(Buffer::new(
                 &self.dev,
                 "view.window",
                 bytes,
-                MemoryLocation::GpuToCpu,
+                MemoryLocation::GpuOnly,
             )?);
         }
         let out = self.window_buf.as_ref().context("window buffer")?;
@@ -312,9 +351,10 @@ impl ViewGpu {
             error_scale: ERROR_SCALE,
         };
         let reference = reference.unwrap_or(a).accum_buffer();
-        self.rec.begin()?;
-        self.rec.begin_pass("present")?;
-        self.rec.dispatch(
+        let rec = &mut self.recs[self.turn];
+        rec.begin()?;
+        rec.begin_pass("present")?;
+        rec.dispatch(
             &self.present,
             &[
                 ("ldr_a", a.ldr_buffer().into()),
@@ -331,16 +371,16 @@ impl ViewGpu {
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::TRANSFER_DST_OPTIMAL,
         );
-        self.rec.transition_image(img.image, undefined, dst)?;
-        self.rec.copy_buffer_to_image(out, img.image, w, h)?;
-        self.rec
-            .transition_image(img.image, dst, vk::ImageLayout::PRESENT_SRC_KHR)?;
-        let times = self.rec.submit_and_wait_with(
+        rec.transition_image(img.image, undefined, dst)?;
+        rec.copy_buffer_to_image(out, img.image, w, h)?;
+        rec.transition_image(img.image, dst, vk::ImageLayout::PRESENT_SRC_KHR)?;
+        rec.submit_with(
             &[(img.acquired, vk::PipelineStageFlags::TRANSFER)],
             &[img.rendered],
         )?;
+        self.turn = (self.turn + 1) % ACQUIRE_SEMAPHORES;
         self.presented = Some((w, h));
-        Ok(times.iter().map(|t| t.ms).sum())
+        Ok(())
     }
 
     /// The last presented image as RGBA bytes: (width, height, pixels).
@@ -353,6 +393,13 @@ impl ViewGpu {
             .get(..n)
             .context("window buffer smaller than the image")?;
         Ok((w, h, to_rgba(words, is_bgra(self.swapchain.format()))))
+    }
+}
+
+impl Drop for ViewGpu {
+    fn drop(&mut self) {
+        // The present submissions in flight read the renderers' buffers, dropped after this.
+        let _ = self.finish_presents();
     }
 }
 

@@ -1,0 +1,190 @@
+//! The pass functions a [`crate::plan::FramePlan`] lists: each records one pass into the
+//! frame slot's command buffer. What a pass reads and writes is what its shaders declare
+//! (`readonly` bindings are read), from which the recorder places the barriers.
+use crate::plan::{MaskSource, Pass, SortGrid, SortPlan};
+use crate::{RenderError, Renderer, Result, trace_params};
+use blueshift_device::{Buffer, Device};
+use blueshift_layout::params::{ImageParams, TraceParams};
+use blueshift_permute::{CycleInput, SortInput, SortParams, grid_offset, mask_offset, pair_phase};
+
+impl Renderer {
+    /// Records `pass` of the frame traced with `tp`, sorting with `sort`'s parameters.
+    pub(crate) fn record_pass(
+        &mut self,
+        pass: Pass,
+        tp: &TraceParams,
+        sort: Option<&SortParams>,
+    ) -> Result<()> {
+        let sort = || sort.ok_or_else(|| RenderError::Invalid("sort pass without params".into()));
+        match pass {
+            Pass::ClearStatus => Ok(self.slots[self.slot]
+                .rec
+                .fill_buffer(&self.trace_status, 0)?),
+            Pass::Trace { mask } => self.trace_pass(tp, mask),
+            Pass::HistoryKeys => self.record_history_keys(),
+            Pass::Classify { gbuffer } => self.record_classes(tp, sort()?, gbuffer),
+            Pass::ClearSortStats if sort()?.count_skew != 0 => {
+                Ok(self.slots[self.slot].rec.fill_buffer(&self.sort_stats, 0)?)
+            }
+            Pass::ClearSortStats => Ok(()),
+            Pass::Sort(plan) => self.sort_pass(&plan, sort()?),
+            Pass::Accumulate | Pass::Tonemap => self.image_pass(pass),
+            Pass::Readback => self.record_readback(),
+        }
+    }
+
+    fn trace_pass(&mut self, tp: &TraceParams, mask: MaskSource) -> Result<()> {
+        let slot = self.slot;
+        let rec = &mut self.slots[slot].rec;
+        let mask = self.masks.get(mask)?;
+        rec.begin_pass("trace")?;
+        self.per_dispatch = self.trace.trace(
+            rec,
+            tp,
+            &self.scene,
+            &self.images,
+            &self.seeds[self.current],
+            mask,
+            &self.masks.keys,
+            &self.estimate,
+            &self.trace_status,
+            self.dispatch_vertices,
+            self.cfg.loop_stats,
+        )?;
+        Ok(())
+    }
+
+    /// The sorting pass's parameters for this frame: `offset` is the mask offset the frame
+    /// sorts against (fixed grids).
+    pub(crate) fn sort_params(&self, s: &SortPlan, offset: (u32, u32)) -> Result<SortParams> {
+        let m = self.cfg.method;
+        Ok(match s.grid {
+            SortGrid::Moving => {
+                // Sorted for the frame they will be rendered in: the next mask, the next grid.
+                let (shift, n) = (self.assets.shift, self.assets.n);
+                let next = mask_offset(self.frame + 1, shift, n);
+                let grid = grid_offset(self.frame + 1, s.block);
+                SortParams {
+                    pairs: m.pairs(&self.pairs_gate),
+                    phase: pair_phase(self.frame + 1, m.hashes_pair_phase()),
+                    count_skew: u32::from(m.adapts_pairs()),
+                    ..self.screen.sort_params_on_grid(s.block, next, grid)?
+                }
+            }
+            SortGrid::Cycle => {
+                // Fixed blocks against the next spatio-temporal slice, the point cycle first.
+                let (n, t) = (self.assets.stbn_n, self.assets.stbn_frames);
+                let cp = self.screen.cycle_params(self.frame, n, t, self.accumulated);
+                let sp = SortParams {
+                    mask_size: n,
+                    ..self.screen.sort_params(s.block, (0, 0))?
+                };
+                blueshift_permute::with_cycle(sp, &cp)
+            }
+            SortGrid::Fixed => self.screen.sort_params(s.block, offset)?,
+        })
+    }
+
+    fn sort_pass(&mut self, s: &SortPlan, sp: &SortParams) -> Result<()> {
+        let v = s.variant;
+        let surfaces = self.surfaces.as_ref();
+        let missing = |what: &str| RenderError::Invalid(format!("{} without {what}", v.shader()));
+        let cycle = match (v.cycle, &self.cycle) {
+            (false, _) => None,
+            (true, Some(c)) => Some(CycleInput {
+                history: &c.history,
+                accum: &self.accum,
+            }),
+            (true, None) => return Err(missing("a cycle history")),
+        };
+        let input = SortInput {
+            classes: v
+                .classes
+                .then(|| {
+                    surfaces
+                        .map(|st| &st.classes)
+                        .ok_or_else(|| missing("classes"))
+                })
+                .transpose()?,
+            history: v
+                .history
+                .then(|| surfaces.and_then(|st| st.history_mean()))
+                .map(|h| h.ok_or_else(|| missing("history keys")))
+                .transpose()?,
+            stats: v.skew.then_some(&self.sort_stats),
+            retarget: v.retarget.then_some(&self.seeds[1 - self.current]),
+            cycle,
+            ..SortInput::new(&self.estimate, self.masks.get(s.mask)?)
+        };
+        let rec = &mut self.slots[self.slot].rec;
+        rec.begin_pass("sort_seeds")?;
+        let seeds = &self.seeds[self.current];
+        self.permute.sort_seeds(rec, sp, v, &input, seeds)?;
+        Ok(())
+    }
+
+    fn image_pass(&mut self, pass: Pass) -> Result<()> {
+        let img = ImageParams {
+            width: self.cfg.width,
+            height: self.cfg.height,
+            count: self.accumulated,
+            exposure: self.cfg.exposure,
+        };
+        let rec = &mut self.slots[self.slot].rec;
+        if pass == Pass::Accumulate {
+            rec.begin_pass("accumulate")?;
+            self.image
+                .accumulate(rec, &img, &self.estimate, &self.accum)
+        } else {
+            rec.begin_pass("tonemap")?;
+            self.image.tonemap(rec, &img, &self.accum, &self.ldr)
+        }
+    }
+}
+
+/// The method's read-only inputs on the device: masks, volumes and key tables.
+pub(crate) struct Masks {
+    pub mask: Buffer,
+    /// The HBO+19 key table for the current spp (GPU layout of `KeyTable::gpu_words`).
+    pub keys: Buffer,
+    pub keys_spp: Option<u32>,
+    pub stbn: Buffer,
+    /// The FAST mask, when the asset exists.
+    pub fast: Option<Buffer>,
+    /// The mask packed with the retarget table (`pack_mask_moves`), for sorting that
+    /// retargets.
+    pub mask_moves: Buffer,
+}
+
+impl Masks {
+    /// Uploads the assets' masks and the key table `keys` (for `keys_spp`).
+    pub fn new(
+        dev: &Device,
+        assets: &crate::MethodAssets,
+        keys: &[[u32; 2]],
+        keys_spp: Option<u32>,
+    ) -> Result<Self> {
+        let moves = blueshift_permute::pack_mask_moves(&assets.mask, &assets.table)?;
+        Ok(Self {
+            mask: Buffer::upload(dev, "assets.mask", &assets.mask)?,
+            keys: Buffer::upload(dev, "assets.hbo19_keys", keys)?,
+            keys_spp,
+            stbn: Buffer::upload(dev, "assets.stbn", &assets.stbn)?,
+            fast: match assets.fast.is_empty() {
+                true => None,
+                false => Some(Buffer::upload(dev, "assets.fast", &assets.fast)?),
+            },
+            mask_moves: Buffer::upload(dev, "assets.mask_moves", &moves)?,
+        })
+    }
+
+    /// The mask buffer `m` names.
+    pub fn get(&self, m: MaskSource) -> Result<&Buffer> {
+        Ok(match m {
+            MaskSource::Mask => &self.mask,
+            MaskSource::MaskMoves => &self.mask_moves,
+            MaskSource::Stbn => &self.stbn,
+            MaskSource::Fast => self.fast.as_ref().ok_or_else(trace_params::no_fast)?,
+        })
+    }
+}
