@@ -287,3 +287,40 @@ fn lambert_variant_matches_the_full_brdf() {
         assert!(same_bits(&a, &b), "{method}: Lambert variant differs");
     }
 }
+
+/// The `blocknet` preset (block nets, no sort) is `sobol` with the `blocknet` sampler, bit for
+/// bit, and differs from plain `sobol` (the sampler is in effect).
+#[test]
+fn blocknet_preset_is_sobol_with_the_block_net_sampler() {
+    let gpu = Gpu::new();
+    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
+    let render = |method: Method, sampler| {
+        let cfg = RenderConfig {
+            bounces: 1,
+            method,
+            sampler,
+            sequence: 3,
+            ..RenderConfig::new(40, 24)
+        };
+        let mut r = Renderer::new(gpu.dev(), &s, &assets(), cfg).unwrap();
+        (0..3)
+            .map(|_| {
+                r.render_frame().unwrap();
+                r.read_estimate().unwrap()
+            })
+            .collect::<Vec<_>>()
+    };
+    let preset = render("blocknet".parse().unwrap(), None);
+    let spelled = render(Method::Sobol, Some(blueshift_sampling::Sampler::BlockNet));
+    let sobol = render(Method::Sobol, None);
+    for (f, (a, b)) in preset.iter().zip(&spelled).enumerate() {
+        assert!(
+            same_bits(a, b),
+            "frame {f}: blocknet differs from sobol + blocknet"
+        );
+    }
+    assert!(
+        !same_bits(&preset[0], &sobol[0]),
+        "blocknet renders plain sobol"
+    );
+}

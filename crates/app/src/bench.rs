@@ -41,6 +41,7 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
     let base = scene.camera_or_default();
+    let path = path.clone().fit(&scene.bounds(), &base, view);
     let move_to = |r: &mut Renderer, f: u32| {
         r.set_camera(path.camera(&base, f));
         let o = path.view_offset(f);

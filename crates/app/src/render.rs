@@ -44,6 +44,7 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     // Only now that every input is known to be good: a failed run leaves no output directory.
     let _out = prepare_dir(&args.out)?;
     let base = scene.camera_or_default();
+    let path = path.clone().fit(&scene.bounds(), &base, view);
     let bar = ProgressBar::new(args.frames as u64);
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {msg} eta {eta}")

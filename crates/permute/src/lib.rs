@@ -28,7 +28,9 @@ pub use cycle::{
 pub use edges::classify_pixels_cpu;
 pub use gpu::{CycleInput, PermutePasses, SortInput, SortVariant};
 pub use history::{HistoryKeys, history_key_cpu};
-pub use reproject::{Reprojected, mean_motion, reproject_motion_cpu, reproject_seeds_cpu};
+pub use reproject::{
+    Reprojected, mean_motion, project_previous, reproject_motion_cpu, reproject_seeds_cpu,
+};
 pub use reproject_gpu::Reprojection;
 pub use similar::similar;
 

@@ -13,7 +13,22 @@ use crate::similar::dot3;
 use blueshift_layout::motion::{
     GBufferTexel, MotionParams, REPROJECT_MAX_MOTION, REPROJECT_NONE, REPROJECT_TIE_BIAS,
 };
-use glam::Vec2;
+use glam::{Vec2, Vec3};
+
+/// Where the previous camera of `p` saw the world point `position`: its continuous pixel
+/// position (pixel centres at `x + 0.5`) and its depth along the previous view direction (not
+/// positive: behind that camera, the position means nothing). The shader's operations, in its
+/// order.
+pub fn project_previous(p: &MotionParams, position: Vec3) -> (Vec2, f32) {
+    let d = position - p.cam_origin;
+    let z = dot3(d, p.cam_forward);
+    let nx = dot3(d, p.cam_right) / (dot3(p.cam_right, p.cam_right) * z);
+    let ny = -dot3(d, p.cam_up) / (dot3(p.cam_up, p.cam_up) * z);
+    (
+        (Vec2::new(nx, ny) + 1.0) * 0.5 * p.view_size - p.view_offset,
+        z,
+    )
+}
 
 /// Step 1 (`reproject_motion`): source pixel (padded index) per padded pixel, or NONE.
 pub fn reproject_motion_cpu(
@@ -26,11 +41,7 @@ pub fn reproject_motion_cpu(
     for y in 0..p.height {
         for x in 0..p.width {
             let g = &cur[(y * p.width + x) as usize];
-            let d = g.position - p.cam_origin;
-            let z = dot3(d, p.cam_forward);
-            let nx = dot3(d, p.cam_right) / (dot3(p.cam_right, p.cam_right) * z);
-            let ny = -dot3(d, p.cam_up) / (dot3(p.cam_up, p.cam_up) * z);
-            let c = (Vec2::new(nx, ny) + 1.0) * 0.5 * p.view_size - p.view_offset;
+            let (c, z) = project_previous(p, g.position);
             let f = (c + REPROJECT_TIE_BIAS).floor();
             let inside = z > 0.0
                 && f.x >= 0.0

@@ -3,7 +3,7 @@
 //! File format (JSON): `{"keyframes": [{"frame": 0, "position": [x,y,z], "target": [x,y,z],
 //! "yfov_degrees": 39.3}, ...]}`. Frames between keyframes interpolate linearly; before the
 //! first and after the last keyframe the camera holds still. Frames must increase.
-use blueshift_scene::Camera;
+use blueshift_scene::{Aabb, Camera};
 use glam::Vec3;
 use serde::Deserialize;
 use std::path::Path;
@@ -28,8 +28,25 @@ pub enum CameraPath {
     Swing {
         degrees_per_frame: f32,
     },
+    /// The camera translates sideways, looking straight ahead (parallax, disocclusion at
+    /// depth edges), about this many pixels per frame at the scene's centre, and turns back
+    /// after [`fit::STRAFE_SPAN`] of the view height. Holds still until [`CameraPath::fit`].
+    Strafe {
+        px_per_frame: f32,
+        fit: Option<fit::StrafeFit>,
+    },
+    /// An orbit about the scene's centre at a distance where the whole scene stays in view,
+    /// turning back after [`fit::ORBIT_VIEW_SPAN`] degrees. Holds still until
+    /// [`CameraPath::fit`].
+    OrbitView {
+        degrees_per_frame: f32,
+        fit: Option<fit::OrbitFit>,
+    },
     Keyframes(Vec<Keyframe>),
 }
+
+#[path = "camera_fit.rs"]
+pub mod fit;
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct Keyframe {
@@ -60,7 +77,8 @@ fn back_and_forth(speed: f32, frame: u32, span: f32) -> f32 {
 }
 
 impl CameraPath {
-    /// Parses `static`, `pan[:PX]`, `orbit[:DEG]`, `swing[:DEG]` or a path to a keyframe file.
+    /// Parses `static`, `pan[:PX]`, `orbit[:DEG]`, `swing[:DEG]`, `strafe[:PX]`,
+    /// `orbit-view[:DEG]` or a path to a keyframe file.
     pub fn parse(spec: &str) -> Result<CameraPath, String> {
         let (name, arg) = spec
             .split_once(':')
@@ -86,6 +104,14 @@ impl CameraPath {
             "swing" => Ok(CameraPath::Swing {
                 degrees_per_frame: number(1.0)?,
             }),
+            "strafe" => Ok(CameraPath::Strafe {
+                px_per_frame: number(2.5)?,
+                fit: None,
+            }),
+            "orbit-view" => Ok(CameraPath::OrbitView {
+                degrees_per_frame: number(1.0)?,
+                fit: None,
+            }),
             _ => Self::load(Path::new(spec)),
         }
     }
@@ -94,7 +120,7 @@ impl CameraPath {
     pub fn load(path: &Path) -> Result<CameraPath, String> {
         let text = std::fs::read_to_string(path).map_err(|e| {
             format!(
-                "camera path '{}': {e} (presets: static, pan:PX, orbit:DEG, swing:DEG)",
+                "camera path '{}': {e} (presets: static, pan:PX, orbit:DEG, swing:DEG, strafe:PX, orbit-view:DEG)",
                 path.display()
             )
         })?;
@@ -136,6 +162,10 @@ impl CameraPath {
             CameraPath::Pan { px_per_frame } => format!("pan:{px_per_frame}"),
             CameraPath::Orbit { degrees_per_frame } => format!("orbit:{degrees_per_frame}"),
             CameraPath::Swing { degrees_per_frame } => format!("swing:{degrees_per_frame}"),
+            CameraPath::Strafe { px_per_frame, .. } => format!("strafe:{px_per_frame}"),
+            CameraPath::OrbitView {
+                degrees_per_frame, ..
+            } => format!("orbit-view:{degrees_per_frame}"),
             CameraPath::Keyframes(_) => "keyframes".into(),
         }
     }
@@ -174,6 +204,25 @@ impl CameraPath {
         }
     }
 
+    /// The path fitted to a scene with `bounds`, seen from `base` in a `view` (w, h) frame:
+    /// strafes and in-view orbits derive their motion from these (the other paths need
+    /// nothing and come back unchanged).
+    pub fn fit(self, bounds: &Aabb, base: &Camera, view: (u32, u32)) -> CameraPath {
+        match self {
+            CameraPath::Strafe { px_per_frame, .. } => CameraPath::Strafe {
+                px_per_frame,
+                fit: Some(fit::strafe(px_per_frame, bounds, base, view.1)),
+            },
+            CameraPath::OrbitView {
+                degrees_per_frame, ..
+            } => CameraPath::OrbitView {
+                degrees_per_frame,
+                fit: Some(fit::orbit(bounds, base, view)),
+            },
+            other => other,
+        }
+    }
+
     /// The camera at `frame` for a base camera.
     pub fn camera(&self, base: &Camera, frame: u32) -> Camera {
         match self {
@@ -185,6 +234,18 @@ impl CameraPath {
             CameraPath::Swing { degrees_per_frame } => {
                 orbit(base, back_and_forth(*degrees_per_frame, frame, SWING_SPAN))
             }
+            CameraPath::Strafe { fit: None, .. } | CameraPath::OrbitView { fit: None, .. } => *base,
+            CameraPath::Strafe { fit: Some(f), .. } => {
+                fit::strafed(base, f, back_and_forth(f.step, frame, f.span))
+            }
+            CameraPath::OrbitView {
+                degrees_per_frame,
+                fit: Some(f),
+            } => fit::orbited(
+                base,
+                f,
+                back_and_forth(*degrees_per_frame, frame, fit::ORBIT_VIEW_SPAN),
+            ),
             CameraPath::Keyframes(k) => interpolate(k, frame),
         }
     }
@@ -228,135 +289,5 @@ fn interpolate(k: &[Keyframe], frame: u32) -> Camera {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn base() -> Camera {
-        Camera {
-            position: Vec3::new(0.0, 0.0, 4.0),
-            target: Vec3::ZERO,
-            up: Vec3::Y,
-            yfov: 0.7,
-        }
-    }
-
-    #[test]
-    fn presets_parse() {
-        assert_eq!(CameraPath::parse("static").unwrap(), CameraPath::Static);
-        assert_eq!(
-            CameraPath::parse("pan:8").unwrap(),
-            CameraPath::Pan { px_per_frame: 8.0 }
-        );
-        assert!(CameraPath::parse("pan:abc").is_err());
-        assert_eq!(
-            CameraPath::parse("swing:2").unwrap(),
-            CameraPath::Swing {
-                degrees_per_frame: 2.0
-            }
-        );
-        assert!(
-            CameraPath::parse("/nonexistent/path.json")
-                .unwrap_err()
-                .contains("presets")
-        );
-    }
-
-    #[test]
-    fn keyframes_far_apart_interpolate_to_finite_cameras() {
-        let text = r#"{"keyframes": [
-            {"frame": 0, "position": [-3e38, 0, 0], "target": [0, 0, 0], "yfov_degrees": 40},
-            {"frame": 9, "position": [3e38, 0, 0], "target": [0, 0, 1], "yfov_degrees": 40}]}"#;
-        let path = CameraPath::from_json(text, "far").unwrap();
-        for f in 0..10 {
-            assert!(path.camera(&base(), f).position.is_finite(), "frame {f}");
-        }
-        assert!(CameraPath::from_json(r#"{"keyframes": []}"#, "x").is_err());
-        assert!(CameraPath::from_json("{", "x").unwrap_err().contains("'x'"));
-    }
-
-    #[test]
-    fn pan_shifts_the_view_not_the_camera() {
-        let p = CameraPath::Pan { px_per_frame: 2.0 };
-        assert_eq!(p.camera(&base(), 10), base());
-        assert_eq!(p.view_offset(10), (20.0, 0.0));
-        assert_eq!(CameraPath::Static.view_offset(10), (0.0, 0.0));
-    }
-
-    #[test]
-    fn pans_turn_back_and_stay_inside_their_sensor() {
-        let p = CameraPath::Pan { px_per_frame: 8.0 };
-        let xs: Vec<f32> = (0..20).map(|t| p.view_offset(t).0).collect();
-        assert_eq!(
-            &xs[..10],
-            &[0.0, 8.0, 16.0, 24.0, 32.0, 40.0, 48.0, 56.0, 64.0, 56.0]
-        );
-        assert_eq!(xs[16], 0.0);
-        let (view, base) = p.view_window(48, 128, 100);
-        assert_eq!(view, (128 + PAN_SPAN as u32, 128 + PAN_SPAN as u32));
-        assert_eq!(base, (0.0, ((view.1 - 100) / 2) as f32));
-        for t in 0..48 {
-            let x = base.0 + p.view_offset(t).0;
-            assert!(x >= 0.0 && x + 128.0 <= view.0 as f32, "frame {t}");
-        }
-        // A slow pan uses only the sensor it needs; leftward pans start at the right.
-        let slow = CameraPath::Pan { px_per_frame: 1.0 };
-        assert_eq!(slow.view_window(10, 32, 32), ((41, 41), (0.0, 4.0)));
-        let left = CameraPath::Pan { px_per_frame: -1.0 };
-        assert_eq!(
-            left.view_window(10, 32, 32).1.0 + left.view_offset(9).0,
-            0.0
-        );
-        assert_eq!(
-            CameraPath::Static.view_window(5, 32, 16),
-            ((32, 16), (0.0, 0.0))
-        );
-    }
-
-    /// A swing follows the orbit up to SWING_SPAN degrees, then turns back to where it began.
-    #[test]
-    fn swings_turn_back_at_their_span() {
-        let (swing, orbit) = (
-            CameraPath::Swing {
-                degrees_per_frame: 1.0,
-            },
-            CameraPath::Orbit {
-                degrees_per_frame: 1.0,
-            },
-        );
-        let b = base();
-        let span = SWING_SPAN as u32;
-        for f in 0..=span {
-            assert_eq!(swing.camera(&b, f), orbit.camera(&b, f), "frame {f}");
-        }
-        for f in 0..=span {
-            let (a, c) = (swing.camera(&b, span + f), orbit.camera(&b, span - f));
-            assert!(
-                (a.position - c.position).length() < 1e-5,
-                "frame {}",
-                span + f
-            );
-        }
-        assert!((swing.camera(&b, 2 * span).position - b.position).length() < 1e-5);
-    }
-
-    #[test]
-    fn keyframes_interpolate_linearly() {
-        let k = vec![
-            Keyframe {
-                frame: 0,
-                position: [0.0, 0.0, 4.0],
-                target: [0.0; 3],
-                yfov_degrees: 40.0,
-            },
-            Keyframe {
-                frame: 10,
-                position: [2.0, 0.0, 4.0],
-                target: [0.0; 3],
-                yfov_degrees: 60.0,
-            },
-        ];
-        let c = CameraPath::Keyframes(k).camera(&base(), 5);
-        assert!((c.position.x - 1.0).abs() < 1e-6);
-        assert!((c.yfov.to_degrees() - 50.0).abs() < 1e-4);
-    }
-}
+#[path = "camera_path_tests.rs"]
+mod tests;

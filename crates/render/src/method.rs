@@ -103,6 +103,10 @@ pub enum Method {
     Stbn,
     /// FAST mask slices (optimised for a Gaussian blur and an EMA) in the same role.
     Fast,
+    /// Block nets without any sorting (`sobol` with the `blocknet` sampler): each 8x8 block's
+    /// seeds share one scrambled Sobol sequence, index advancing per frame. The ablation of
+    /// `sort-cycle`: what its sampler gives before the sort.
+    BlockNet,
     /// Per-pixel seeds permuted between frames.
     Permute(Permutation),
 }
@@ -159,13 +163,14 @@ impl Method {
     pub const SORT_CYCLE: Method = Method::Permute(CYCLE);
 
     /// The named presets `--method` offers, in the order of the documentation.
-    pub const PRESETS: [(&'static str, Method); 11] = [
+    pub const PRESETS: [(&'static str, Method); 12] = [
         ("white", Method::White),
         ("sobol", Method::Sobol),
         ("hbo19", Method::Hbo19),
         ("mask-r2", Method::MaskR2),
         ("stbn", Method::Stbn),
         ("fast", Method::Fast),
+        ("blocknet", Method::BlockNet),
         ("sort", Method::SORT),
         ("sort-retarget", Method::SORT_RETARGET),
         ("sort-grid-history", Method::SORT_GRID_HISTORY),
@@ -215,6 +220,7 @@ impl Method {
         match self {
             Method::Sobol => Sampler::Sobol,
             Method::Hbo19 => Sampler::Hbo19,
+            Method::BlockNet => Sampler::BlockNet,
             m if m.cycles_points() => Sampler::BlockNet,
             _ => Sampler::White,
         }
@@ -246,7 +252,7 @@ impl Method {
 
     /// Whether the sample index advances with the frame (a progressive sequence per pixel).
     pub fn advances_index(self) -> bool {
-        matches!(self, Method::Sobol | Method::Hbo19) || self.cycles_points()
+        matches!(self, Method::Sobol | Method::Hbo19 | Method::BlockNet) || self.cycles_points()
     }
 
     /// Whether seeds cycle through a fixed set of points (the sorting pass's point cycle): the

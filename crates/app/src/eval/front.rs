@@ -1,7 +1,8 @@
 //! The per-frame against accumulated trade-off: per method, P1 of single frames against P1 of
-//! their EMA (both on emitter-free pixels, ratios to white), as a table and a scatter plot.
-//! No method is best at both everywhere, so the report shows where each one sits.
-use super::ratios::{ratios, white_of};
+//! their accumulation along the motion (TAA, the EMA for a still camera; both on emitter-free
+//! pixels, ratios to white), as a table and a scatter plot. No method is best at both
+//! everywhere, so the report shows where each one sits.
+use super::ratios::{ratio, white_of};
 use super::{Config, Run};
 use anyhow::{Context, Result};
 use image::RgbImage;
@@ -13,10 +14,10 @@ use std::path::Path;
 pub struct FrontPoint {
     pub method: String,
     pub per_frame: f64,
-    pub ema: f64,
+    pub taa: f64,
 }
 
-/// Geometric means over `configs` of each method's (per-frame P1, EMA P1) ratios, emitter-free
+/// Geometric means over `configs` of each method's (per-frame P1, TAA P1) ratios, emitter-free
 /// pixels, in the order the methods first appear; methods missing from a configuration are
 /// averaged over the ones they ran in.
 pub fn front_points(configs: &[Config], runs: &[Run]) -> Vec<FrontPoint> {
@@ -26,13 +27,10 @@ pub fn front_points(configs: &[Config], runs: &[Run]) -> Vec<FrontPoint> {
             continue;
         };
         for r in runs.iter().filter(|r| &r.config == c) {
-            let q = ratios(
-                &r.metrics.raw,
-                &r.metrics.ema,
-                &white.metrics.raw,
-                &white.metrics.ema,
-            );
-            if !(q.p1_clean > 0.0 && q.ema_p1_clean > 0.0) {
+            let (m, w) = (&r.metrics, &white.metrics);
+            let p1 = ratio(m.raw.p1.clean, w.raw.p1.clean);
+            let taa = ratio(m.taa.p1.clean, w.taa.p1.clean);
+            if !(p1 > 0.0 && taa > 0.0) {
                 continue;
             }
             let name = r.method.name();
@@ -43,8 +41,8 @@ pub fn front_points(configs: &[Config], runs: &[Run]) -> Vec<FrontPoint> {
                     acc.len() - 1
                 }
             };
-            acc[i].1 += q.p1_clean.ln();
-            acc[i].2 += q.ema_p1_clean.ln();
+            acc[i].1 += p1.ln();
+            acc[i].2 += taa.ln();
             acc[i].3 += 1;
         }
     }
@@ -52,7 +50,7 @@ pub fn front_points(configs: &[Config], runs: &[Run]) -> Vec<FrontPoint> {
         .map(|(method, a, b, n)| FrontPoint {
             method,
             per_frame: (a / f64::from(n)).exp(),
-            ema: (b / f64::from(n)).exp(),
+            taa: (b / f64::from(n)).exp(),
         })
         .collect()
 }
@@ -77,7 +75,7 @@ fn draw(
     let hi = |f: fn(&FrontPoint) -> f64| points.iter().map(f).fold(1.05f64, f64::max).min(3.0);
     let lo = |f: fn(&FrontPoint) -> f64| points.iter().map(f).fold(1.0f64, f64::min) - 0.05;
     let (x0, x1) = (lo(|p| p.per_frame).max(0.0), hi(|p| p.per_frame) + 0.05);
-    let (y0, y1) = (lo(|p| p.ema).max(0.0), hi(|p| p.ema) + 0.05);
+    let (y0, y1) = (lo(|p| p.taa).max(0.0), hi(|p| p.taa) + 0.05);
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
         .margin(15)
@@ -88,12 +86,12 @@ fn draw(
     chart
         .configure_mesh()
         .x_desc("per-frame P1 / white (emitter-free)")
-        .y_desc("EMA P1 / white (emitter-free)")
+        .y_desc("TAA P1 / white (emitter-free)")
         .draw()
         .map_err(|e| e.to_string())?;
     for (i, p) in points.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
-        let (x, y) = (p.per_frame.min(x1), p.ema.min(y1));
+        let (x, y) = (p.per_frame.min(x1), p.taa.min(y1));
         chart
             .draw_series([Circle::new((x, y), 6, color.filled())])
             .map_err(|e| e.to_string())?;
@@ -121,12 +119,12 @@ mod tests {
             FrontPoint {
                 method: "a".into(),
                 per_frame: 0.7,
-                ema: 0.9,
+                taa: 0.9,
             },
             FrontPoint {
                 method: "b".into(),
                 per_frame: 1.0,
-                ema: 0.5,
+                taa: 0.5,
             },
         ];
         plot(&pts, "front", &p).unwrap();

@@ -21,6 +21,16 @@ pub const DISPLAY_WHITE: f32 = 1.0;
 /// picks up a tail of them.
 pub const EMITTER_DILATION: usize = 4;
 
+/// Blur sigmas (px) of P4 and P8: the error at a spatial denoiser's scale, which keeps only low
+/// frequencies.
+pub const WIDE_SIGMAS: [f64; 2] = [4.0, 8.0];
+
+/// The emitter set grows by this many sigmas for the wide blurs. Their kernels reach 4 sigma,
+/// but the Gaussian's tail beyond 3 sigma carries 0.3% of its weight: enough to keep an
+/// aliased light edge's error (about 100x the rest) from dominating, without the 4-sigma ring
+/// that leaves few pixels at sigma 8 on a 128-px frame.
+pub const WIDE_DILATION_SIGMAS: f64 = 3.0;
+
 /// Per-pixel masks of one reference image (row-major, `w * h` entries each).
 #[derive(Debug, Clone)]
 pub struct Masks {
@@ -31,17 +41,24 @@ pub struct Masks {
     /// visible light carries an aliasing error about 100x the light-transport error, which no
     /// seed permutation can move; these pixels leave it out.
     pub clean: Vec<bool>,
+    /// For each of [`WIDE_SIGMAS`]: not within [`WIDE_DILATION_SIGMAS`] sigma of an emitter
+    /// pixel (the emitter-free pixels of P4 and P8).
+    pub far: [Vec<bool>; WIDE_SIGMAS.len()],
 }
 
 impl Masks {
     pub fn from_reference(r: &Gray) -> Self {
         let emitter: Vec<bool> = r.data.iter().map(|&v| v >= DISPLAY_WHITE).collect();
-        Self {
-            edge: edge_mask(r),
-            clean: dilate_square(&emitter, r.w, r.h, EMITTER_DILATION)
+        let free = |radius: usize| -> Vec<bool> {
+            dilate_square(&emitter, r.w, r.h, radius)
                 .into_iter()
                 .map(|e| !e)
-                .collect(),
+                .collect()
+        };
+        Self {
+            edge: edge_mask(r),
+            clean: free(EMITTER_DILATION),
+            far: WIDE_SIGMAS.map(|s| free((WIDE_DILATION_SIGMAS * s).ceil() as usize)),
         }
     }
 }

@@ -1,7 +1,9 @@
 //! Per-run metric accumulation (docs/results.md): RMSE, LF, P1, P2 over a frame window, on all,
-//! smooth, edge and emitter-free pixels, for raw frames and their exponential moving average
-//! (alpha 0.1).
-use super::masks::Masks;
+//! smooth, edge and emitter-free pixels, and P4, P8 on pixels far from emitters, for raw
+//! frames, their exponential moving average (alpha 0.1) and their accumulation along the
+//! motion (`taa`).
+use super::masks::{Masks, WIDE_SIGMAS};
+use super::taa::Reprojection;
 use anyhow::Result;
 use blueshift_analysis::{
     Boundary, Gray, LF_CUTOFF, RadialProfile, Spectrum, SpectrumAccumulator, Window, gaussian_blur,
@@ -66,17 +68,42 @@ fn mean_squares(img: &Gray, masks: &Masks) -> Split {
     }
 }
 
-/// Root-mean-square metrics of one stream (raw frames or EMA) over the window.
+/// Root-mean-square metrics of one stream (raw frames, EMA or TAA) over the window.
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct StreamMetrics {
     pub rmse: Split,
     pub p1: Split,
     pub p2: Split,
     pub lf: f64,
+    /// P4 and P8 (the blurs of [`WIDE_SIGMAS`]) on the pixels away from emitters by 3 sigma
+    /// ([`Masks::far_from_emitters`]): the error a spatial denoiser keeps.
+    pub p4: f64,
+    pub p8: f64,
+}
+
+/// The EMA's step: `acc` moves `EMA_ALPHA` of the way to `e`.
+pub fn ema_step(acc: &mut [f32], e: &[f32]) {
+    for (a, &b) in acc.iter_mut().zip(e) {
+        *a += EMA_ALPHA * (b - *a);
+    }
+}
+
+/// Mean square of `img` over the pixels of `mask` (0 for none).
+fn masked_mean_square(img: &Gray, mask: &[bool]) -> f64 {
+    let (s, n) = img
+        .data
+        .iter()
+        .zip(mask)
+        .filter(|&(_, &on)| on)
+        .fold((0.0f64, 0usize), |(s, n), (&v, _)| {
+            (s + f64::from(v) * f64::from(v), n + 1)
+        });
+    if n == 0 { 0.0 } else { s / n as f64 }
 }
 
 struct Stream {
     sq: [Split; 3],
+    wide: [f64; WIDE_SIGMAS.len()],
     frames: usize,
     spectrum: SpectrumAccumulator,
 }
@@ -85,6 +112,7 @@ impl Stream {
     fn new() -> Result<Self> {
         Ok(Self {
             sq: [Split::default(); 3],
+            wide: [0.0; WIDE_SIGMAS.len()],
             frames: 0,
             spectrum: SpectrumAccumulator::new(TILE, Window::Hann)?,
         })
@@ -96,6 +124,9 @@ impl Stream {
         let b2 = gaussian_blur(e, 2.0, Boundary::Clamp)?;
         for (acc, img) in self.sq.iter_mut().zip([e, &b1, &b2]) {
             *acc = acc.zip(mean_squares(img, masks), |a, b| a + b);
+        }
+        for ((acc, &sigma), mask) in self.wide.iter_mut().zip(&WIDE_SIGMAS).zip(&masks.far) {
+            *acc += masked_mean_square(&gaussian_blur(e, sigma, Boundary::Clamp)?, mask);
         }
         self.frames += 1;
         if e.w >= TILE && e.h >= TILE {
@@ -120,6 +151,8 @@ impl Stream {
                 p1: root(self.sq[1]),
                 p2: root(self.sq[2]),
                 lf,
+                p4: (self.wide[0] / n).sqrt(),
+                p8: (self.wide[1] / n).sqrt(),
             },
             spectrum,
         ))
@@ -131,7 +164,13 @@ pub struct RunAccumulator {
     window_start: usize,
     raw: Stream,
     ema_stream: Stream,
+    taa_stream: Stream,
     ema: Option<Gray>,
+    taa: Option<Gray>,
+    /// Share of pixels that kept their TAA history, summed over the window's frames.
+    kept: f64,
+    /// Screen-space motion (px) of the pixel-centre hit points, summed over frames 1 on.
+    motion: f64,
     /// P1 (all pixels) of every frame.
     pub p1_per_frame: Vec<f64>,
     /// P1 on emitter-free pixels of every frame, for the P1-over-frames figure.
@@ -144,6 +183,12 @@ pub struct RunAccumulator {
 pub struct RunMetrics {
     pub raw: StreamMetrics,
     pub ema: StreamMetrics,
+    /// Accumulated along the motion ([`Reprojection`]): the EMA for a still camera.
+    pub taa: StreamMetrics,
+    /// Share of pixels that kept their TAA history, mean over the window.
+    pub history_share: f64,
+    /// Mean screen-space motion of the pixel-centre hit points, px/frame.
+    pub motion_px: f64,
     pub p1_per_frame: Vec<f64>,
     pub p1_clean_per_frame: Vec<f64>,
     #[serde(skip)]
@@ -158,15 +203,26 @@ impl RunAccumulator {
             window_start,
             raw: Stream::new()?,
             ema_stream: Stream::new()?,
+            taa_stream: Stream::new()?,
             ema: None,
+            taa: None,
+            kept: 0.0,
+            motion: 0.0,
             p1_per_frame: Vec::new(),
             p1_clean_per_frame: Vec::new(),
             last_error: None,
         })
     }
 
-    /// Adds the error image of frame `t`.
-    pub fn add_frame(&mut self, t: usize, e: Gray, masks: &Masks) -> Result<()> {
+    /// Adds the error image of frame `t`; `motion` carries the previous frame's TAA history
+    /// to this one (`None` on frame 0).
+    pub fn add_frame(
+        &mut self,
+        t: usize,
+        e: Gray,
+        masks: &Masks,
+        motion: Option<&Reprojection>,
+    ) -> Result<()> {
         let b1 = gaussian_blur(&e, 1.0, Boundary::Clamp)?;
         let p1 = mean_squares(&b1, masks).map(f64::sqrt);
         self.p1_per_frame.push(p1.all);
@@ -174,17 +230,25 @@ impl RunAccumulator {
         let ema = match self.ema.take() {
             None => e.clone(),
             Some(mut m) => {
-                for (a, &b) in m.data.iter_mut().zip(&e.data) {
-                    *a += EMA_ALPHA * (b - *a);
-                }
+                ema_step(&mut m.data, &e.data);
                 m
             }
         };
+        let taa = match (self.taa.take(), motion) {
+            (Some(prev), Some(op)) => Gray::new(e.w, e.h, op.step(&prev.data, &e.data, 1))?,
+            _ => e.clone(),
+        };
+        if let Some(op) = motion {
+            self.motion += op.motion_px;
+        }
         if t >= self.window_start {
             self.raw.add(&e, masks)?;
             self.ema_stream.add(&ema, masks)?;
+            self.taa_stream.add(&taa, masks)?;
+            self.kept += motion.map_or(0.0, Reprojection::kept_share);
         }
         self.ema = Some(ema);
+        self.taa = Some(taa);
         self.last_error = Some(e);
         Ok(())
     }
@@ -192,10 +256,15 @@ impl RunAccumulator {
     pub fn finish(self) -> Result<RunMetrics> {
         let (raw, spectrum) = self.raw.finish()?;
         let (ema, _) = self.ema_stream.finish()?;
+        let (taa, _) = self.taa_stream.finish()?;
         let radial = spectrum.as_ref().map(radial_profile);
+        let frames = self.p1_per_frame.len();
         Ok(RunMetrics {
             raw,
             ema,
+            taa,
+            history_share: self.kept / self.raw.frames.max(1) as f64,
+            motion_px: self.motion / frames.saturating_sub(1).max(1) as f64,
             p1_per_frame: self.p1_per_frame,
             p1_clean_per_frame: self.p1_clean_per_frame,
             spectrum,
@@ -215,10 +284,15 @@ pub fn average(prev: RunMetrics, next: RunMetrics, n: f64) -> RunMetrics {
         p1: split(a.p1, b.p1),
         p2: split(a.p2, b.p2),
         lf: mix(a.lf, b.lf),
+        p4: mix(a.p4, b.p4),
+        p8: mix(a.p8, b.p8),
     };
     RunMetrics {
         raw: stream(prev.raw, next.raw),
         ema: stream(prev.ema, next.ema),
+        taa: stream(prev.taa, next.taa),
+        history_share: mix(prev.history_share, next.history_share),
+        motion_px: mix(prev.motion_px, next.motion_px),
         p1_per_frame: frames(&prev.p1_per_frame, &next.p1_per_frame),
         p1_clean_per_frame: frames(&prev.p1_clean_per_frame, &next.p1_clean_per_frame),
         spectrum: prev.spectrum,
@@ -236,9 +310,10 @@ mod tests {
         let masks = Masks {
             edge: (0..64 * 64).map(|i| i % 2 == 0).collect(),
             clean: (0..64 * 64).map(|i| i % 3 == 0).collect(),
+            far: [(); 2].map(|_| (0..64 * 64).map(|i| i % 5 == 0).collect()),
         };
         let mut acc = RunAccumulator::new(0).unwrap();
-        acc.add_frame(0, e, &masks).unwrap();
+        acc.add_frame(0, e, &masks, None).unwrap();
         let m = acc.finish().unwrap();
         for v in [
             m.raw.rmse.all,
@@ -247,6 +322,9 @@ mod tests {
             m.raw.rmse.clean,
             m.raw.p1.all,
             m.raw.p1.clean,
+            m.raw.p4,
+            m.raw.p8,
+            m.taa.p8,
         ] {
             assert!((v - 0.5).abs() < 1e-6, "{v}");
         }
@@ -263,7 +341,7 @@ mod tests {
         let mut acc = RunAccumulator::new(0).unwrap();
         for t in 0..3 {
             let e = Gray::from_fn(w, h, |x, y| if light(x, y) { 100.0 } else { 0.1 });
-            acc.add_frame(t, e, &masks).unwrap();
+            acc.add_frame(t, e, &masks, None).unwrap();
         }
         let m = acc.finish().unwrap();
         for (name, v) in [

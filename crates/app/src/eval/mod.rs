@@ -8,6 +8,9 @@ mod metrics;
 mod ratios;
 mod reference;
 mod report;
+mod report_taa;
+mod taa;
+mod track;
 
 use crate::GpuOpts;
 use crate::args::{SceneArgs, method_parser, scene_path};
@@ -15,6 +18,7 @@ use crate::output::prepare_dir;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::{Gray, luminance};
 use blueshift_render::{CameraPath, Method, RenderConfig, Renderer, SeedMap};
+use blueshift_scene::SceneGpu;
 use indicatif::{ProgressBar, ProgressStyle};
 use masks::Masks;
 use metrics::{RunAccumulator, RunMetrics};
@@ -41,7 +45,8 @@ pub struct EvalArgs {
     #[arg(long, value_delimiter = ',', default_value = "1",
           value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub spp: Vec<u32>,
-    /// Comma-separated camera paths: static, pan:PX, orbit:DEG, swing:DEG, or keyframe files.
+    /// Comma-separated camera paths: static, pan:PX, orbit:DEG, swing:DEG, strafe:PX,
+    /// orbit-view:DEG, or keyframe files.
     #[arg(long, value_delimiter = ',', default_value = "static", value_parser = CameraPath::parse)]
     pub camera: Vec<CameraPath>,
     /// Comma-separated bounce counts (1 = direct light only).
@@ -107,11 +112,18 @@ pub struct Run {
     /// P1 (all / smooth / edge / emitter-free pixels) of each sequence, for the spread of the
     /// ratios across sequences.
     pub p1_per_sequence: Vec<metrics::Split>,
+    /// The same for the EMA and for the TAA (accumulated along the motion).
+    pub ema_p1_per_sequence: Vec<metrics::Split>,
+    pub taa_p1_per_sequence: Vec<metrics::Split>,
     /// FLIP of the accumulated image at the last frame, over all pixels (averaged over
     /// sequences).
     pub flip: f64,
     /// The same FLIP map averaged over the emitter-free pixels only.
     pub flip_clean: f64,
+    /// FLIP of the estimate's TAA against the reference's TAA (the same operator on both) at
+    /// the last frame: all pixels, emitter-free pixels.
+    pub taa_flip: f64,
+    pub taa_flip_clean: f64,
     /// Share of emitter-free pixels in the last frame's reference.
     pub clean_fraction: f64,
     pub pass_ms: BTreeMap<String, f64>,
@@ -134,6 +146,11 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
         bail!("--sequences {} is outside 1..=64", args.sequences);
     }
     let scene = args.scene.load_scene()?;
+    let (base, bounds) = (scene.camera_or_default(), scene.bounds());
+    let cameras: Vec<CameraPath> = cameras
+        .iter()
+        .map(|c| c.clone().fit(&bounds, &base, (args.width, args.height)))
+        .collect();
     let path = scene_path(&args.scene.scene);
     let scene_bytes =
         std::fs::read(&path).with_context(|| format!("reading scene {}", path.display()))?;
@@ -151,6 +168,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     }
     .validate(&dev)?;
     let _out = prepare_dir(&args.out)?;
+    let scene_gpu = SceneGpu::build(&scene);
 
     let mut runs = Vec::new();
     let mut configs = Vec::new();
@@ -166,7 +184,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                 bounces: b,
                 spp: args.reference_spp,
                 frames: args.frames,
-                path: camera,
+                path: &camera,
                 cache: &cache,
                 no_jitter: args.no_jitter,
             };
@@ -185,9 +203,16 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                 );
                 bar.set_message(config.label());
                 for &m in &methods {
-                    runs.push(run_method(
-                        &dev, &scene, &assets, args, &config, m, seed_map, &refs, &bar,
-                    )?);
+                    let ctx = RunContext {
+                        dev: &dev,
+                        scene: &scene,
+                        scene_gpu: &scene_gpu,
+                        assets: &assets,
+                        args,
+                        refs: &refs,
+                        bar: &bar,
+                    };
+                    runs.push(run_method(&ctx, &config, m, seed_map)?);
                 }
                 bar.finish_and_clear();
                 configs.push(config);
@@ -206,27 +231,38 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     Ok(())
 }
 
-#[allow(clippy::too_many_arguments)]
-fn run_method(
-    dev: &blueshift_device::Device,
-    scene: &blueshift_scene::Scene,
-    assets: &blueshift_render::MethodAssets,
-    args: &EvalArgs,
-    config: &Config,
-    method: Method,
-    seed_map: SeedMap,
-    refs: &reference::References,
-    bar: &ProgressBar,
-) -> Result<Run> {
+/// What every run of one configuration shares.
+struct RunContext<'a> {
+    dev: &'a blueshift_device::Device,
+    scene: &'a blueshift_scene::Scene,
+    scene_gpu: &'a SceneGpu,
+    assets: &'a blueshift_render::MethodAssets,
+    args: &'a EvalArgs,
+    refs: &'a reference::References,
+    bar: &'a ProgressBar,
+}
+
+fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedMap) -> Result<Run> {
+    let RunContext {
+        dev,
+        scene,
+        assets,
+        args,
+        refs,
+        bar,
+        ..
+    } = *ctx;
     let t0 = Instant::now();
     let (w, h) = (args.width, args.height);
     let window = (args.frames / 2) as usize;
     let mut merged: Option<RunMetrics> = None;
-    let mut p1_per_sequence = Vec::new();
+    let (mut p1_per_sequence, mut ema_p1_per_sequence, mut taa_p1_per_sequence) =
+        (Vec::new(), Vec::new(), Vec::new());
     let mut times: BTreeMap<String, Vec<f64>> = BTreeMap::new();
     let mut rendered = 0usize;
     let (mut last_frame, mut last_error) = (Vec::new(), None);
     let (mut flip, mut flip_clean, mut clean_fraction) = (0.0, 0.0, 0.0);
+    let (mut taa_flip, mut taa_flip_clean) = (0.0, 0.0);
     for seq in 0..args.sequences {
         let (view, base_offset) = config.camera.view_window(args.frames, w, h);
         let cfg = RenderConfig {
@@ -244,7 +280,11 @@ fn run_method(
         let mut r = Renderer::new(dev, scene, assets, cfg)?;
         let base = scene.camera_or_default();
         let mut acc = RunAccumulator::new(window)?;
+        let mut track = track::Track::new(ctx.scene_gpu, &config.camera, base, args.frames, (w, h));
+        // The estimate's and the reference's TAA (rgb + the estimate's fourth channel).
+        let (mut taa_est, mut taa_ref): (Vec<f32>, Vec<f32>) = (Vec::new(), Vec::new());
         for t in 0..args.frames {
+            let motion = track.next(t);
             r.set_camera(config.camera.camera(&base, t));
             let o = config.camera.view_offset(t);
             r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
@@ -268,13 +308,27 @@ fn run_method(
                 .collect();
             let reference_y = Gray::new(w as usize, h as usize, reference_y)?;
             let masks = Masks::from_reference(&reference_y);
-            acc.add_frame(t as usize, Gray::new(w as usize, h as usize, e)?, &masks)?;
+            acc.add_frame(
+                t as usize,
+                Gray::new(w as usize, h as usize, e)?,
+                &masks,
+                motion.as_ref(),
+            )?;
+            taa_est = taa::accumulate(motion.as_ref(), &taa_est, bytemuck::cast_slice(&est), 4);
+            taa_ref = taa::accumulate(motion.as_ref(), &taa_ref, bytemuck::cast_slice(&rf.px), 4);
             if t + 1 == args.frames {
                 last_frame = est;
                 let n = args.sequences as f64;
                 let f = flip::scores(&r.read_accum()?, &rf.px, w, h, &masks.clean);
                 flip += f.all / n;
                 flip_clean += f.clean / n;
+                let (te, tr) = (
+                    bytemuck::cast_slice(&taa_est),
+                    bytemuck::cast_slice(&taa_ref),
+                );
+                let f = flip::scores(te, tr, w, h, &masks.clean);
+                taa_flip += f.all / n;
+                taa_flip_clean += f.clean / n;
                 clean_fraction = masks.clean.iter().filter(|&&c| c).count() as f64
                     / masks.clean.len().max(1) as f64;
             }
@@ -283,6 +337,8 @@ fn run_method(
         last_error = acc.last_error.clone();
         let m = acc.finish()?;
         p1_per_sequence.push(m.raw.p1);
+        ema_p1_per_sequence.push(m.ema.p1);
+        taa_p1_per_sequence.push(m.taa.p1);
         merged = Some(match merged {
             None => m,
             Some(prev) => metrics::average(prev, m, seq as f64),
@@ -302,8 +358,12 @@ fn run_method(
         method,
         metrics: merged.context("no sequence ran")?,
         p1_per_sequence,
+        ema_p1_per_sequence,
+        taa_p1_per_sequence,
         flip,
         flip_clean,
+        taa_flip,
+        taa_flip_clean,
         clean_fraction,
         pass_ms,
         seconds: t0.elapsed().as_secs_f64(),

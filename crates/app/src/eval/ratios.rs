@@ -1,6 +1,6 @@
 //! Ratios to `white` and to `sobol` of the same configuration, and their spread across
 //! sequences: the numbers report.md and report.json share.
-use super::metrics::{Split, StreamMetrics};
+use super::metrics::{RunMetrics, Split, StreamMetrics};
 use super::{Config, Run};
 use blueshift_render::Method;
 
@@ -45,6 +45,27 @@ pub fn ratios(
     }
 }
 
+/// Ratios to white of the accumulation along the motion and of the wide blurs (P4, P8), all on
+/// emitter-free pixels.
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct TaaRatios {
+    pub taa_p1_clean: f64,
+    pub p4: f64,
+    pub p8: f64,
+    pub taa_p4: f64,
+    pub taa_p8: f64,
+}
+
+pub fn taa_ratios(m: &RunMetrics, w: &RunMetrics) -> TaaRatios {
+    TaaRatios {
+        taa_p1_clean: ratio(m.taa.p1.clean, w.taa.p1.clean),
+        p4: ratio(m.raw.p4, w.raw.p4),
+        p8: ratio(m.raw.p8, w.raw.p8),
+        taa_p4: ratio(m.taa.p4, w.taa.p4),
+        taa_p8: ratio(m.taa.p8, w.taa.p8),
+    }
+}
+
 /// Standard error of the P1 ratio to white across sequences: the ratios of sequence i of both
 /// runs (same camera and references), their sample standard deviation over sqrt(n). NaN for
 /// fewer than 2 sequences. Tells whether two methods (or a method and a bar) differ by more
@@ -60,10 +81,21 @@ pub fn p1_ratio_stderr(m: &[f64], w: &[f64]) -> f64 {
     (var / n).sqrt()
 }
 
-/// `p1_ratio_stderr` of one pixel set (`all`, `edge`, `clean`) of two runs.
+/// `p1_ratio_stderr` of one pixel set (`all`, `edge`, `clean`) of two runs' per-frame P1.
 pub fn stderr_of(r: &Run, w: &Run, pick: fn(&Split) -> f64) -> f64 {
-    let m: Vec<f64> = r.p1_per_sequence.iter().map(pick).collect();
-    let w: Vec<f64> = w.p1_per_sequence.iter().map(pick).collect();
+    stderr_in(r, w, |r| &r.p1_per_sequence, pick)
+}
+
+/// `p1_ratio_stderr` of one pixel set of two runs' per-sequence P1 of one stream (`series`:
+/// per frame, EMA or TAA).
+pub fn stderr_in(
+    r: &Run,
+    w: &Run,
+    series: fn(&Run) -> &Vec<Split>,
+    pick: fn(&Split) -> f64,
+) -> f64 {
+    let m: Vec<f64> = series(r).iter().map(pick).collect();
+    let w: Vec<f64> = series(w).iter().map(pick).collect();
     p1_ratio_stderr(&m, &w)
 }
 

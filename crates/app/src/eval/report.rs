@@ -1,7 +1,9 @@
 //! report.json (every number, machine-readable) and report.md (tables + figures).
 use super::metrics::Split;
-use super::ratios::{method_of, ratio, ratios, stderr_of, white_of, with_se};
-use super::{Config, EvalArgs, Run, figures, front, masks};
+use super::ratios::{
+    method_of, ratio, ratios, stderr_in, stderr_of, taa_ratios, white_of, with_se,
+};
+use super::{Config, EvalArgs, Run, figures, front, masks, report_taa};
 use crate::output::write_atomic;
 use anyhow::Result;
 use blueshift_device::Device;
@@ -52,6 +54,20 @@ pub fn write(
             "p1_edge_ratio_stderr": white.map_or(f64::NAN, |w| stderr_of(r, w, |s| s.edge)),
             "p1_clean_ratio_stderr": white.map_or(f64::NAN, |w| stderr_of(r, w, |s| s.clean)),
             "p1_per_sequence": r.p1_per_sequence,
+            "taa": r.metrics.taa,
+            "taa_ratios_vs_white": white.map(|w| taa_ratios(&r.metrics, &w.metrics)),
+            "ema_p1_clean_ratio_stderr": white.map_or(f64::NAN, |w| {
+                stderr_in(r, w, |r| &r.ema_p1_per_sequence, |s| s.clean)
+            }),
+            "taa_p1_clean_ratio_stderr": white.map_or(f64::NAN, |w| {
+                stderr_in(r, w, |r| &r.taa_p1_per_sequence, |s| s.clean)
+            }),
+            "ema_p1_per_sequence": r.ema_p1_per_sequence,
+            "taa_p1_per_sequence": r.taa_p1_per_sequence,
+            "taa_flip": num(r.taa_flip),
+            "taa_flip_clean": num(r.taa_flip_clean),
+            "history_share": r.metrics.history_share,
+            "motion_px_per_frame": r.metrics.motion_px,
             "flip": num(r.flip),
             "flip_clean": num(r.flip_clean),
             "flip_ratio_vs_sobol": num(sobol.map_or(f64::NAN, |s| ratio(r.flip, s.flip))),
@@ -65,7 +81,7 @@ pub fn write(
         });
         if let Some(obj) = v.as_object_mut() {
             // NaN is not JSON: LF is NaN when the image is smaller than one 64x64 tile.
-            for k in ["raw", "ema"] {
+            for k in ["raw", "ema", "taa"] {
                 if let Some(lf) = obj.get_mut(k).and_then(|s| s.get_mut("lf")) {
                     *lf = num(lf.as_f64().unwrap_or(f64::NAN));
                 }
@@ -82,6 +98,9 @@ pub fn write(
             "ema_alpha": super::metrics::EMA_ALPHA, "spectrum_tile": super::metrics::TILE,
             "edge_threshold": masks::EDGE_THRESHOLD, "display_white": masks::DISPLAY_WHITE,
             "emitter_dilation_px": masks::EMITTER_DILATION,
+            "wide_sigmas": masks::WIDE_SIGMAS,
+            "wide_dilation_sigmas": masks::WIDE_DILATION_SIGMAS,
+            "taa_alpha": super::taa::ALPHA,
         },
         "device": { "name": info.name, "driver": format!("{} {}", info.driver_name, info.driver_info) },
         "commit": commit(),
@@ -152,19 +171,20 @@ fn markdown(
         masks::DISPLAY_WHITE,
         masks::EMITTER_DILATION
     )?;
+    report_taa::headline(&mut md, configs, runs)?;
     let points = front::front_points(configs, runs);
     if points.len() > 1 {
         writeln!(
             md,
             "## Per frame against accumulated\n\n\
-             Geometric means over the configurations below (emitter-free P1 ratios to white); \
-             lower left is better on both.\n\n\
-             | method | per-frame P1 | EMA P1 |\n|---|---|---|"
+             Geometric means over the configurations below (emitter-free P1 ratios to white; \
+             accumulated: TAA, which is the EMA for a still camera); lower left is better on both.\n\n\
+             | method | per-frame P1 | TAA P1 |\n|---|---|---|"
         )?;
         for p in &points {
-            writeln!(md, "| {} | {:.3} | {:.3} |", p.method, p.per_frame, p.ema)?;
+            writeln!(md, "| {} | {:.3} | {:.3} |", p.method, p.per_frame, p.taa)?;
         }
-        front::plot(&points, "per frame vs EMA", &out.join("front.png"))?;
+        front::plot(&points, "per frame vs TAA", &out.join("front.png"))?;
         writeln!(md, "\n![front](front.png)\n")?;
     }
     for c in configs {
@@ -251,6 +271,7 @@ fn markdown(
                 overhead
             )?;
         }
+        report_taa::config_table(&mut md, &cr, white)?;
         let slug = c.slug();
         figures::radial(
             &cr,
