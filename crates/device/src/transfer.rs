@@ -88,24 +88,6 @@ impl Recorder {
         }
         Ok(())
     }
-
-    /// Copies an image (in GENERAL layout) into a buffer, tightly packed.
-    pub fn copy_image_to_buffer(&mut self, img: &Image, dst: &Buffer) -> Result<()> {
-        self.check_recording()?;
-        let region = whole_image_copy(img.width, img.height);
-        self.access(&[handle(img.raw)], &[handle(dst.raw)]);
-        // SAFETY: recording; image is in GENERAL.
-        unsafe {
-            self.dev.raw().cmd_copy_image_to_buffer(
-                self.cmd,
-                img.raw,
-                vk::ImageLayout::GENERAL,
-                dst.raw,
-                &[region],
-            );
-        }
-        Ok(())
-    }
 }
 
 /// A Vulkan handle as the key of the barrier bookkeeping.
