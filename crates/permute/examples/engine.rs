@@ -57,6 +57,10 @@ fn frame_loop(dev: &Device, width: u32, height: u32, frames: u64) -> Result<()> 
     ];
     let pixels = u64::from(width) * u64::from(height);
     let estimate = Buffer::new(dev, "engine.estimate", pixels * 16, MemoryLocation::GpuOnly)?;
+    // Host-readable copies for the check, filled by each frame's own submission.
+    let host = MemoryLocation::GpuToCpu;
+    let estimate_back = Buffer::new(dev, "engine.estimate.readback", estimate.size, host)?;
+    let seeds_back = Buffer::new(dev, "engine.seeds.readback", seeds[0].size, host)?;
 
     let bindings = [
         Binding::storage(0, "seeds"),
@@ -104,14 +108,20 @@ fn frame_loop(dev: &Device, width: u32, height: u32, frames: u64) -> Result<()> 
             ..SortVariant::PAPER
         };
         passes.sort_seeds(&mut rec, &sp, variant, &input, &seeds[cur])?;
+        rec.copy_buffer(&estimate, &estimate_back, None)?;
+        rec.copy_buffer(&seeds[next], &seeds_back, None)?;
         let times = rec.submit_and_wait()?;
 
         // The CPU twins on the same keys must give the same seeds, bit for bit.
-        let keys: Vec<f32> = estimate.read::<[f32; 4]>()?.iter().map(|e| e[3]).collect();
+        let keys: Vec<f32> = estimate_back
+            .read::<[f32; 4]>()?
+            .iter()
+            .map(|e| e[3])
+            .collect();
         let none = (vec![0; keys.len()], vec![0.0; keys.len()]);
         sort_seeds_cpu(&sp, &keys, &assets.mask, &none.0, &none.1, &mut cpu_seeds);
         cpu_seeds = retarget_seeds_cpu(&sp, &assets.table, &cpu_seeds);
-        let gpu_seeds = seeds[next].read::<u32>()?;
+        let gpu_seeds = seeds_back.read::<u32>()?;
         if gpu_seeds[..cpu_seeds.len()] != cpu_seeds[..] {
             return Err(format!("frame {frame}: GPU seeds differ from the CPU twins").into());
         }

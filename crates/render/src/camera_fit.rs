@@ -31,18 +31,11 @@ pub struct OrbitFit {
     pub start: Vec3,
 }
 
-/// Unit view direction of `base`, -z when degenerate (as `Camera::basis`).
-fn forward(base: &Camera) -> Vec3 {
-    (base.target - base.position)
-        .try_normalize()
-        .unwrap_or(Vec3::NEG_Z)
-}
-
 /// A strafe of `px_per_frame` at the depth of the bounds' centre, for a view `view_height`
 /// pixels high: a pixel there spans `2 d tan(yfov / 2) / view_height` world units.
 pub fn strafe(px_per_frame: f32, bounds: &Aabb, base: &Camera, view_height: u32) -> StrafeFit {
-    let f = forward(base);
-    let right = base.basis(1.0).right.normalize_or(Vec3::X);
+    let b = base.basis(1.0);
+    let (f, right) = (b.forward, b.right.normalize_or(Vec3::X));
     let centre = if bounds.is_empty() {
         base.target
     } else {

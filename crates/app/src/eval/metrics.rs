@@ -234,10 +234,8 @@ impl RunAccumulator {
                 m
             }
         };
-        let taa = match (self.taa.take(), motion) {
-            (Some(prev), Some(op)) => Gray::new(e.w, e.h, op.step(&prev.data, &e.data, 1))?,
-            _ => e.clone(),
-        };
+        let prev = self.taa.take().map(|g| g.data).unwrap_or_default();
+        let taa = Gray::new(e.w, e.h, super::taa::accumulate(motion, &prev, &e.data, 1))?;
         if let Some(op) = motion {
             self.motion += op.motion_px;
         }

@@ -173,6 +173,14 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     let mut runs = Vec::new();
     let mut configs = Vec::new();
     for camera in cameras {
+        // The measuring filter depends on the camera path alone: traced once per path.
+        let motions = track::motions(
+            &scene_gpu,
+            &camera,
+            &scene,
+            args.frames,
+            (args.width, args.height),
+        );
         for &b in bounces {
             let job = RefJob {
                 dev: &dev,
@@ -189,6 +197,16 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                 no_jitter: args.no_jitter,
             };
             let refs = references(&job)?;
+            // The reference's TAA at the last frame, shared by every method and sequence.
+            let taa_ref = (0..args.frames).fold(Vec::new(), |acc, t| {
+                let px = refs.frame(t, args.width, args.height).px;
+                taa::accumulate(
+                    motions[t as usize].as_ref(),
+                    &acc,
+                    bytemuck::cast_slice(&px),
+                    4,
+                )
+            });
             for &spp in spps {
                 let config = Config {
                     camera: camera.clone(),
@@ -206,7 +224,8 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                     let ctx = RunContext {
                         dev: &dev,
                         scene: &scene,
-                        scene_gpu: &scene_gpu,
+                        motions: &motions,
+                        taa_ref: &taa_ref,
                         assets: &assets,
                         args,
                         refs: &refs,
@@ -235,7 +254,10 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
 struct RunContext<'a> {
     dev: &'a blueshift_device::Device,
     scene: &'a blueshift_scene::Scene,
-    scene_gpu: &'a SceneGpu,
+    /// The TAA's reprojection into each frame (`track::motions`).
+    motions: &'a [Option<taa::Reprojection>],
+    /// The reference accumulated along the motion, at the last frame.
+    taa_ref: &'a [f32],
     assets: &'a blueshift_render::MethodAssets,
     args: &'a EvalArgs,
     refs: &'a reference::References,
@@ -280,11 +302,10 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
         let mut r = Renderer::new(dev, scene, assets, cfg)?;
         let base = scene.camera_or_default();
         let mut acc = RunAccumulator::new(window)?;
-        let mut track = track::Track::new(ctx.scene_gpu, &config.camera, base, args.frames, (w, h));
-        // The estimate's and the reference's TAA (rgb + the estimate's fourth channel).
-        let (mut taa_est, mut taa_ref): (Vec<f32>, Vec<f32>) = (Vec::new(), Vec::new());
+        // The estimate's TAA (rgb + the estimate's fourth channel).
+        let mut taa_est: Vec<f32> = Vec::new();
         for t in 0..args.frames {
-            let motion = track.next(t);
+            let motion = &ctx.motions[t as usize];
             r.set_camera(config.camera.camera(&base, t));
             let o = config.camera.view_offset(t);
             r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
@@ -315,7 +336,6 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
                 motion.as_ref(),
             )?;
             taa_est = taa::accumulate(motion.as_ref(), &taa_est, bytemuck::cast_slice(&est), 4);
-            taa_ref = taa::accumulate(motion.as_ref(), &taa_ref, bytemuck::cast_slice(&rf.px), 4);
             if t + 1 == args.frames {
                 last_frame = est;
                 let n = args.sequences as f64;
@@ -324,7 +344,7 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
                 flip_clean += f.clean / n;
                 let (te, tr) = (
                     bytemuck::cast_slice(&taa_est),
-                    bytemuck::cast_slice(&taa_ref),
+                    bytemuck::cast_slice(ctx.taa_ref),
                 );
                 let f = flip::scores(te, tr, w, h, &masks.clean);
                 taa_flip += f.all / n;

@@ -92,6 +92,19 @@ impl<'a> Track<'a> {
     }
 }
 
+/// The reprojection into each of `frames` frames of `path` (`None` for frame 0), from the scene's
+/// default camera: what every method and sequence of one path share.
+pub fn motions(
+    scene: &SceneGpu,
+    path: &CameraPath,
+    base: &blueshift_scene::Scene,
+    frames: u32,
+    size: (u32, u32),
+) -> Vec<Option<Reprojection>> {
+    let mut track = Track::new(scene, path, base.camera_or_default(), frames, size);
+    (0..frames).map(|t| track.next(t)).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
