@@ -43,6 +43,8 @@ mod rng;
 #[cfg(test)]
 mod sampling;
 #[cfg(test)]
+mod taa;
+#[cfg(test)]
 mod trace;
 
 /// Whether two RGBA images are equal bit for bit.

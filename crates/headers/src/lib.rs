@@ -43,6 +43,7 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .push::<motion::GBufferTexel>()
                 .push::<motion::MotionParams>()
                 .push::<motion::HistoryParams>()
+                .push::<motion::TaaParams>()
                 .constant("REPROJECT_NONE", motion::REPROJECT_NONE)
                 .constant("HISTORY_MIN_FRAMES", motion::HISTORY_MIN_FRAMES)
                 .constant("HISTORY_MAX_FRAMES", motion::HISTORY_MAX_FRAMES)
@@ -52,6 +53,8 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant_i32("REPROJECT_MAX_MOTION", motion::REPROJECT_MAX_MOTION)
                 .constant_f32("SIMILAR_MIN_COS", motion::SIMILAR_MIN_COS)
                 .constant_f32("SIMILAR_PLANE_DISTANCE", motion::SIMILAR_PLANE_DISTANCE)
+                .constant_f32("TAA_ALPHA", motion::TAA_ALPHA)
+                .constant_f32("TAA_SNAP", motion::TAA_SNAP)
                 .render("motion"),
         ),
         ("sort_network", blueshift_layout::network::glsl_header()),

@@ -39,6 +39,24 @@ gpu_struct! {
 }
 
 gpu_struct! {
+    /// Push constants of `image/taa`, the accumulation along the motion (TAA): the previous
+    /// frame's camera and the screen as the reprojection passes take them (`padded_*` unused).
+    pub struct TaaParams {
+        pub camera: MotionParams,
+        /// 1 when the previous frame had this frame's camera: every pixel keeps its own
+        /// history with weight 1 (the plain EMA), as the CPU twin's still camera does.
+        pub still: u32,
+    }
+}
+
+/// Weight of the newest frame in the TAA (the EMA's weight too).
+pub const TAA_ALPHA: f32 = 0.1;
+/// The TAA's bilinear positions are rounded to 1/TAA_SNAP px: the projection's float noise
+/// (~1e-5 px) would otherwise give a tap off screen or on another surface a tiny weight, which
+/// renormalisation could turn into the whole history; whole-pixel motions stay whole.
+pub const TAA_SNAP: f32 = 256.0;
+
+gpu_struct! {
     /// Push constants of `permute/history_key`: each pixel's history mean (its surface's mean
     /// sorting key over earlier frames, fetched through the reprojection's source map).
     pub struct HistoryParams {

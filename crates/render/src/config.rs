@@ -40,6 +40,24 @@ pub struct RenderConfig {
     /// Trace with the loop-counting shader (`trace/trace_loop_stats`; same images, slower):
     /// [`crate::FrameStats::loops`].
     pub loop_stats: bool,
+    /// How frames accumulate when the camera moves.
+    pub accumulation: Accumulation,
+}
+
+/// How the accumulation (the output the tonemap shows) takes in each frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Accumulation {
+    /// The running mean since the last reset or camera move.
+    #[default]
+    Mean,
+    /// Along the motion (the `taa` pass, [`crate::taa`]) on every frame, the operator `eval`
+    /// measures: with a still camera, the EMA of weight [`crate::taa::ALPHA`].
+    Taa,
+    /// Along the motion while the camera moves, the running mean while it is still: a
+    /// viewer's choice (what one sees while moving is what `eval` measures, and a still view
+    /// converges). After motion the mean goes on as if from 1 / ALPHA - 1 frames, so its first
+    /// step weighs the new frame as the TAA did.
+    Follow,
 }
 
 impl RenderConfig {
@@ -61,6 +79,7 @@ impl RenderConfig {
             seed_map: SeedMap::Random,
             lambert_variant: true,
             loop_stats: false,
+            accumulation: Accumulation::Mean,
         }
     }
 

@@ -30,6 +30,8 @@ mod readback;
 mod seeds;
 mod slots;
 mod stats;
+pub mod taa;
+mod taa_pass;
 mod trace_params;
 
 pub use blueshift_assets::{MethodAssets, default_assets_dir};
@@ -38,7 +40,7 @@ pub use blueshift_trace::{
     TraceVariant, gbuffer_cpu,
 };
 pub use camera_path::{CameraPath, Keyframe};
-pub use config::RenderConfig;
+pub use config::{Accumulation, RenderConfig};
 pub use error::{RenderError, Result};
 pub use method::{
     GRID_BLOCK, Grouping, Key, Method, Motion, Pairs, Permutation, Points, Transport,
@@ -113,6 +115,8 @@ pub struct Renderer {
     surfaces: Option<motion::Surfaces>,
     /// `sort-cycle`'s per-phase history, made when a plan first needs it.
     cycle: Option<cycle::CycleHistory>,
+    /// The `taa` pass and its state, made when the accumulation first follows the motion.
+    taa: Option<taa_pass::TaaPass>,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -186,6 +190,7 @@ impl Renderer {
             pairs_gate: PairsGate::default(),
             surfaces: None,
             cycle: None,
+            taa: None,
             cfg,
         })
     }
@@ -207,18 +212,25 @@ impl Renderer {
         &self.dev
     }
 
-    /// Moves the camera; the accumulation restarts (seeds keep their permutation state).
+    /// Moves the camera; the running mean restarts, an accumulation along the motion follows
+    /// it (seeds keep their permutation state).
     pub fn set_camera(&mut self, camera: Camera) {
         if camera != self.camera {
             self.camera = camera;
-            self.accumulated = 0;
+            self.view_moved();
         }
     }
 
-    /// Shifts the view window by `offset` pixels (image-space pan); restarts accumulation.
+    /// Shifts the view window by `offset` pixels (image-space pan), as [`Self::set_camera`].
     pub fn set_view_offset(&mut self, offset: (f32, f32)) {
         if offset != self.view_offset {
             self.view_offset = offset;
+            self.view_moved();
+        }
+    }
+
+    fn view_moved(&mut self) {
+        if self.cfg.accumulation == Accumulation::Mean {
             self.accumulated = 0;
         }
     }
@@ -236,6 +248,9 @@ impl Renderer {
         self.pairs_gate = PairsGate::default();
         if let Some(m) = &mut self.surfaces {
             m.reset();
+        }
+        if let Some(t) = &mut self.taa {
+            t.reset();
         }
         Ok(())
     }
@@ -320,7 +335,7 @@ impl Renderer {
         if self.plan.cycle_history && self.cycle.is_none() {
             self.cycle = Some(cycle::CycleHistory::new(&self.dev, &self.screen)?);
         }
-        Ok(())
+        self.make_taa_state()
     }
 
     /// Starts the running mean afresh with the next frame (seeds and frame index are kept):

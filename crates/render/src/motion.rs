@@ -60,13 +60,13 @@ struct ReprojectionInputs {
 /// centre. Equal inputs give equal outputs (the passes are deterministic), so a still view
 /// skips the G-buffer, and with the same block grid the classes, without changing a bit.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct ViewInputs {
+pub(crate) struct ViewInputs {
     camera: [glam::Vec3; 4],
     view: [glam::Vec2; 2],
 }
 
 impl ViewInputs {
-    fn of(tp: &TraceParams) -> Self {
+    pub fn of(tp: &TraceParams) -> Self {
         Self {
             camera: [tp.cam_origin, tp.cam_forward, tp.cam_right, tp.cam_up],
             view: [tp.view_offset, tp.view_size],
@@ -141,8 +141,28 @@ impl Surfaces {
     }
 
     /// The G-buffer of the frame before (the reprojection source).
-    fn previous_gbuffer(&self) -> &Buffer {
+    pub fn previous_gbuffer(&self) -> &Buffer {
         &self.gbuffers[self.next_g]
+    }
+
+    /// The view the previous G-buffer shows, if any.
+    pub fn previous_view(&self) -> Option<ViewInputs> {
+        self.gviews[self.next_g]
+    }
+
+    /// Records the `gbuffer` pass for camera `tp` unless the current G-buffer shows that view
+    /// already (this frame's plan wrote it, or the camera is still).
+    pub fn ensure_gbuffer(
+        &mut self,
+        rec: &mut Recorder,
+        tp: &TraceParams,
+        scene: &SceneBuffers,
+        images: &SceneImages,
+    ) -> Result<()> {
+        if self.gviews[1 - self.next_g] == Some(ViewInputs::of(tp)) {
+            return Ok(());
+        }
+        self.record_gbuffer(rec, tp, scene, images)
     }
 
     /// Records the `gbuffer` pass for camera `tp` into the next G-buffer, which becomes the

@@ -2,7 +2,7 @@
 //! frame slot's command buffer. What a pass reads and writes is what its shaders declare
 //! (`readonly` bindings are read), from which the recorder places the barriers.
 use crate::plan::{MaskSource, Pass, SortGrid, SortPlan};
-use crate::{RenderError, Renderer, Result, trace_params};
+use crate::{Accumulation, RenderError, Renderer, Result, trace_params};
 use blueshift_device::{Buffer, Device};
 use blueshift_layout::params::{ImageParams, TraceParams};
 use blueshift_permute::{CycleInput, SortInput, SortParams, grid_offset, mask_offset, pair_phase};
@@ -28,6 +28,9 @@ impl Renderer {
             }
             Pass::ClearSortStats => Ok(()),
             Pass::Sort(plan) => self.sort_pass(&plan, sort()?),
+            Pass::Accumulate if self.cfg.accumulation != Accumulation::Mean => {
+                self.record_accumulation(tp)
+            }
             Pass::Accumulate | Pass::Tonemap => self.image_pass(pass),
             Pass::Readback => self.record_readback(),
         }
@@ -123,7 +126,7 @@ impl Renderer {
         Ok(())
     }
 
-    fn image_pass(&mut self, pass: Pass) -> Result<()> {
+    pub(crate) fn image_pass(&mut self, pass: Pass) -> Result<()> {
         let img = ImageParams {
             width: self.cfg.width,
             height: self.cfg.height,

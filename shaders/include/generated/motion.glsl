@@ -35,6 +35,12 @@ struct HistoryParams {
 };
 const uint HISTORY_PARAMS_SIZE = 24;
 
+struct TaaParams {
+    MotionParams camera; // offset 0, size 80
+    uint still; // offset 80, size 4
+};
+const uint TAA_PARAMS_SIZE = 84;
+
 const uint REPROJECT_NONE = 4294967295u;
 const uint HISTORY_MIN_FRAMES = 4u;
 const uint HISTORY_MAX_FRAMES = 64u;
@@ -44,4 +50,6 @@ const float REPROJECT_TIE_BIAS = 0.00390625;
 const int REPROJECT_MAX_MOTION = 255;
 const float SIMILAR_MIN_COS = 0.9;
 const float SIMILAR_PLANE_DISTANCE = 0.02;
+const float TAA_ALPHA = 0.1;
+const float TAA_SNAP = 256.0;
 #endif

@@ -3,12 +3,12 @@
 //! frames, their exponential moving average (alpha 0.1) and their accumulation along the
 //! motion (`taa`).
 use super::masks::{Masks, WIDE_SIGMAS};
-use super::taa::Reprojection;
 use anyhow::Result;
 use blueshift_analysis::{
     Boundary, Gray, LF_CUTOFF, RadialProfile, Spectrum, SpectrumAccumulator, Window, gaussian_blur,
     low_frequency_fraction, radial_profile,
 };
+use blueshift_render::taa::{self, Reprojection};
 use serde::Serialize;
 
 /// Spectrum tile edge (docs/results.md: 64x64 tiles).
@@ -235,7 +235,7 @@ impl RunAccumulator {
             }
         };
         let prev = self.taa.take().map(|g| g.data).unwrap_or_default();
-        let taa = Gray::new(e.w, e.h, super::taa::accumulate(motion, &prev, &e.data, 1))?;
+        let taa = Gray::new(e.w, e.h, taa::accumulate(motion, &prev, &e.data, 1))?;
         if let Some(op) = motion {
             self.motion += op.motion_px;
         }

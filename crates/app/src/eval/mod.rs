@@ -9,7 +9,6 @@ mod ratios;
 mod reference;
 mod report;
 mod report_taa;
-mod taa;
 mod track;
 
 use crate::GpuOpts;
@@ -17,7 +16,7 @@ use crate::args::{SceneArgs, method_parser, scene_path};
 use crate::output::prepare_dir;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::{Gray, luminance};
-use blueshift_render::{CameraPath, Method, RenderConfig, Renderer, SeedMap};
+use blueshift_render::{CameraPath, Method, RenderConfig, Renderer, SeedMap, taa};
 use blueshift_scene::SceneGpu;
 use indicatif::{ProgressBar, ProgressStyle};
 use masks::Masks;

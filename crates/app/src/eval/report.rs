@@ -100,7 +100,7 @@ pub fn write(
             "emitter_dilation_px": masks::EMITTER_DILATION,
             "wide_sigmas": masks::WIDE_SIGMAS,
             "wide_dilation_sigmas": masks::WIDE_DILATION_SIGMAS,
-            "taa_alpha": super::taa::ALPHA,
+            "taa_alpha": blueshift_render::taa::ALPHA,
         },
         "device": { "name": info.name, "driver": format!("{} {}", info.driver_name, info.driver_info) },
         "commit": commit(),

@@ -2,10 +2,10 @@
 //! reprojection from the previous frame. It comes from the CPU twin of the G-buffer pass, from
 //! the path alone: the renderer's own G-buffer exists only for some methods and is the input
 //! of the methods being measured, which must not shape the measuring filter.
-use super::taa::Reprojection;
 use blueshift_layout::motion::GBufferTexel;
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::Screen;
+use blueshift_render::taa::Reprojection;
 use blueshift_render::{CameraPath, gbuffer_cpu, motion_params};
 use blueshift_scene::{Camera, SceneGpu};
 

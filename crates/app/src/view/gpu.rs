@@ -9,6 +9,7 @@
 //! semaphore and signalling the image's render-finished semaphore. A screenshot reads the same
 //! buffer, so it is exactly what was presented.
 use super::controls::{Change, ERROR_SCALE, REFERENCE_SPP, Settings};
+use super::renderers::{make_reference, make_renderer};
 use anyhow::{Context, Result};
 use blueshift_device::{
     ACQUIRE_SEMAPHORES, Binding, Buffer, ComputePipeline, Device, DeviceDesc, Instance,
@@ -17,7 +18,7 @@ use blueshift_device::{
 use blueshift_layout::params::{
     PRESENT_FLAG_BGRA, PRESENT_FLAG_ERROR, PRESENT_FLAG_SPLIT, PresentParams,
 };
-use blueshift_render::{FrameStats, Method, MethodAssets, RenderConfig, Renderer};
+use blueshift_render::{FrameStats, MethodAssets, RenderConfig, Renderer};
 use blueshift_scene::{Camera, Scene};
 
 /// What stays fixed for the whole run.
@@ -401,58 +402,6 @@ impl Drop for ViewGpu {
         // The present submissions in flight read the renderers' buffers, dropped after this.
         let _ = self.finish_presents();
     }
-}
-
-fn make_renderer(
-    dev: &Device,
-    opts: &Options,
-    size: (u32, u32),
-    s: &Settings,
-    method: Method,
-) -> Result<Renderer> {
-    let cfg = RenderConfig {
-        method,
-        ..opts.template.clone()
-    };
-    start(dev, opts, sized(cfg, size, s))
-}
-
-/// The error view's reference: Sobol, accumulating while the camera is still.
-fn make_reference(
-    dev: &Device,
-    opts: &Options,
-    size: (u32, u32),
-    s: &Settings,
-) -> Result<Renderer> {
-    let s = Settings {
-        spp: s.spp.max(REFERENCE_SPP),
-        ..s.clone()
-    };
-    // Sobol's own sampler, whatever `--sampler` gives the views.
-    let cfg = RenderConfig {
-        method: Method::Sobol,
-        sampler: None,
-        ..opts.template.clone()
-    };
-    start(dev, opts, sized(cfg, size, &s))
-}
-
-/// `cfg` at `size` with the quality settings of `s`.
-fn sized(cfg: RenderConfig, size: (u32, u32), s: &Settings) -> RenderConfig {
-    RenderConfig {
-        width: size.0,
-        height: size.1,
-        spp: s.spp,
-        bounces: s.bounces,
-        block: s.block,
-        ..cfg
-    }
-}
-
-fn start(dev: &Device, opts: &Options, cfg: RenderConfig) -> Result<Renderer> {
-    let (method, w, h) = (cfg.method, cfg.width, cfg.height);
-    Renderer::new(dev, &opts.scene, &opts.assets, cfg)
-        .with_context(|| format!("creating the {method} renderer at {w}x{h}"))
 }
 
 #[cfg(test)]

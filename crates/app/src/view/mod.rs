@@ -5,6 +5,7 @@
 mod controls;
 mod gpu;
 mod input;
+mod renderers;
 mod window;
 
 use crate::GpuOpts;

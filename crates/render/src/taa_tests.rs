@@ -1,7 +1,13 @@
 //! Properties of the TAA operator, each on synthetic G-buffers and images.
 use super::*;
-use crate::eval::metrics::ema_step;
 use glam::Vec3;
+
+/// The plain EMA the still camera must reproduce: `acc` moves ALPHA of the way to `e`.
+fn ema_step(acc: &mut [f32], e: &[f32]) {
+    for (a, &b) in acc.iter_mut().zip(e) {
+        *a += 0.1 * (b - *a);
+    }
+}
 
 /// A texel of surface `material` (all surfaces here are the plane z = -2 facing the camera:
 /// only the material tells them apart).

@@ -1,4 +1,5 @@
-//! Accumulation along the motion (TAA), the temporal filter a moving camera's viewer sees.
+//! Accumulation along the motion (TAA), the temporal filter a moving camera's viewer sees: the
+//! CPU twin of the `taa` pass (shaders/image/taa.comp), and what `eval` measures with.
 //!
 //! An exponential moving average of screen pixels keeps, under motion, the per-pixel structure
 //! of screen-fixed patterns (Sobol indices, mask slices) that a real temporal filter never
@@ -14,14 +15,14 @@
 //! weights depend only on the camera path ([`Reprojection`], computed once per frame), never
 //! on the method being measured. With a still camera every pixel keeps its own value with
 //! weight 1 and the operator is the EMA of `metrics`, bit for bit.
-use blueshift_layout::motion::GBufferTexel;
+use blueshift_layout::motion::{GBufferTexel, TAA_ALPHA, TAA_SNAP};
 use blueshift_permute::{MotionParams, project_previous, similar};
 use glam::Vec2;
 
 /// Weight of the newest frame (the EMA's).
-pub const ALPHA: f32 = 0.1;
-/// Bilinear positions are rounded to 1/SNAP px (the reprojection passes' tie bias).
-pub const SNAP: f32 = 256.0;
+pub const ALPHA: f32 = TAA_ALPHA;
+/// Bilinear positions are rounded to 1/SNAP px (see [`TAA_SNAP`]).
+pub const SNAP: f32 = TAA_SNAP;
 
 /// One pixel's history: up to four (previous pixel, weight) taps, weights summing to 1.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -103,9 +104,7 @@ impl Reprojection {
                 let Some(c) = s else {
                     return t;
                 };
-                // Snapped to 1/SNAP px: the projection's float noise (~1e-5 px) would give a tap
-                // off screen or on another surface a tiny weight, which renormalisation could
-                // turn into the whole history; whole-pixel motions stay whole.
+                // Snapped to 1/SNAP px (see TAA_SNAP).
                 let p = ((*c - 0.5) * SNAP).round() / SNAP;
                 let (x0, y0) = (p.x.floor(), p.y.floor());
                 let (fx, fy) = (p.x - x0, p.y - y0);
@@ -145,6 +144,11 @@ impl Reprojection {
     pub fn kept_share(&self) -> f64 {
         let kept = self.taps.iter().filter(|t| t.n > 0).count();
         kept as f64 / self.taps.len().max(1) as f64
+    }
+
+    /// Whether pixel `i` kept some history (else it restarts from this frame).
+    pub fn kept(&self, i: usize) -> bool {
+        self.taps.get(i).is_some_and(|t| t.n > 0)
     }
 
     /// One TAA step on images of `ch` interleaved channels: the previous accumulation `acc`
