@@ -141,6 +141,7 @@ pub fn pass_times(stats: &[FrameStats], present_ms: f64) -> String {
         ("classify_pixels", "classify"),
         ("sort_seeds", "sort"),
         ("accumulate", "accum"),
+        ("taa", "taa"),
         ("tonemap", "tonemap"),
     ] {
         if stats
