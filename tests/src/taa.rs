@@ -23,12 +23,13 @@ struct Frame {
 }
 
 /// `frames` frames of `method` with `accumulation` along camera path `path` (laid out as eval
-/// and `render` lay it out), direct light.
+/// and `render` lay it out), direct light; the view window drifts down by `drift` px per frame
+/// (a strafe alone moves only along x, where two of the four bilinear taps weigh 0).
 fn run(
     gpu: &Gpu,
     method: Method,
     accumulation: Accumulation,
-    path: &str,
+    (path, drift): (&str, f32),
     frames: u32,
 ) -> Vec<Frame> {
     let scene = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
@@ -49,7 +50,8 @@ fn run(
         .map(|f| {
             r.set_camera(path.camera(&base, f));
             let o = path.view_offset(f);
-            r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
+            let y = base_offset.1 + o.1 + drift * f as f32;
+            r.set_view_offset((base_offset.0 + o.0, y));
             let tp = r.trace_params();
             r.render_frame().unwrap();
             Frame {
@@ -83,7 +85,8 @@ fn close(got: f32, want: f32) -> bool {
     (got - want).abs() <= 1e-5 * (1.0 + want.abs())
 }
 
-/// Frame by frame under a strafe (sub-pixel motion, parallax, disocclusion), each step of the
+/// Frame by frame under a strafe with a vertical drift (sub-pixel motion on both axes, so all
+/// four taps weigh; parallax, disocclusion), each step of the
 /// GPU accumulation equals the twin's step from the GPU's previous accumulation, and the whole
 /// run equals the twin's run; for a method without G-buffers of its own (the pass writes it)
 /// and a reprojecting one (the pass reuses the renderer's).
@@ -92,7 +95,7 @@ fn strafing_taa_matches_the_cpu_twin() {
     let gpu = Gpu::new();
     let reproject: Method = "sort-retarget:motion=reproject".parse().unwrap();
     for method in [Method::White, reproject] {
-        let frames = run(&gpu, method, Accumulation::Taa, "strafe:2.5", 6);
+        let frames = run(&gpu, method, Accumulation::Taa, ("strafe:2.5", 0.3), 6);
         let mut twin = frames[0].est.concat();
         assert_eq!(
             flat(&frames[0].acc),
@@ -127,7 +130,13 @@ fn strafing_taa_matches_the_cpu_twin() {
 #[test]
 fn disoccluded_pixels_restart() {
     let gpu = Gpu::new();
-    let frames = run(&gpu, Method::White, Accumulation::Taa, "strafe:2.5", 4);
+    let frames = run(
+        &gpu,
+        Method::White,
+        Accumulation::Taa,
+        ("strafe:2.5", 0.0),
+        4,
+    );
     let mut disoccluded = 0;
     for t in 1..frames.len() {
         let (a, b) = (&frames[t - 1], &frames[t]);
@@ -149,7 +158,7 @@ fn disoccluded_pixels_restart() {
 #[test]
 fn still_taa_is_the_plain_ema() {
     let gpu = Gpu::new();
-    let frames = run(&gpu, Method::White, Accumulation::Taa, "static", 5);
+    let frames = run(&gpu, Method::White, Accumulation::Taa, ("static", 0.0), 5);
     for t in 1..frames.len() {
         let (a, b) = (&frames[t - 1], &frames[t]);
         let ema: Vec<f32> = flat(&a.acc)
@@ -171,12 +180,30 @@ fn still_taa_is_the_plain_ema() {
 #[test]
 fn follow_is_the_taa_while_moving_and_a_mean_when_still() {
     let gpu = Gpu::new();
-    let taa = run(&gpu, Method::White, Accumulation::Taa, "strafe:2.5", 3);
-    let follow = run(&gpu, Method::White, Accumulation::Follow, "strafe:2.5", 3);
+    let taa = run(
+        &gpu,
+        Method::White,
+        Accumulation::Taa,
+        ("strafe:2.5", 0.3),
+        3,
+    );
+    let follow = run(
+        &gpu,
+        Method::White,
+        Accumulation::Follow,
+        ("strafe:2.5", 0.3),
+        3,
+    );
     for (t, (a, b)) in taa.iter().zip(&follow).enumerate() {
         assert_eq!(flat(&a.acc), flat(&b.acc), "frame {t}");
     }
-    let still = run(&gpu, Method::White, Accumulation::Follow, "static", 3);
+    let still = run(
+        &gpu,
+        Method::White,
+        Accumulation::Follow,
+        ("static", 0.0),
+        3,
+    );
     let (a, b) = (&still[1], &still[2]);
     // A still start is the plain running mean: frame 2 weighs its estimate by 1/3.
     for ((acc, prev), e) in flat(&b.acc).iter().zip(flat(&a.acc)).zip(flat(&b.est)) {
