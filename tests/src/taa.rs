@@ -180,20 +180,8 @@ fn still_taa_is_the_plain_ema() {
 #[test]
 fn follow_is_the_taa_while_moving_and_a_mean_when_still() {
     let gpu = Gpu::new();
-    let taa = run(
-        &gpu,
-        Method::White,
-        Accumulation::Taa,
-        ("strafe:2.5", 0.3),
-        3,
-    );
-    let follow = run(
-        &gpu,
-        Method::White,
-        Accumulation::Follow,
-        ("strafe:2.5", 0.3),
-        3,
-    );
+    let [taa, follow] = [Accumulation::Taa, Accumulation::Follow]
+        .map(|a| run(&gpu, Method::White, a, ("strafe:2.5", 0.3), 3));
     for (t, (a, b)) in taa.iter().zip(&follow).enumerate() {
         assert_eq!(flat(&a.acc), flat(&b.acc), "frame {t}");
     }

@@ -150,24 +150,14 @@ impl Surfaces {
         self.gviews[self.next_g]
     }
 
-    /// Records the `gbuffer` pass for camera `tp` unless the current G-buffer shows that view
-    /// already (this frame's plan wrote it, or the camera is still).
-    pub fn ensure_gbuffer(
-        &mut self,
-        rec: &mut Recorder,
-        tp: &TraceParams,
-        scene: &SceneBuffers,
-        images: &SceneImages,
-    ) -> Result<()> {
-        if self.gviews[1 - self.next_g] == Some(ViewInputs::of(tp)) {
-            return Ok(());
-        }
-        self.record_gbuffer(rec, tp, scene, images)
+    /// The view the current G-buffer shows, if any.
+    pub fn current_view(&self) -> Option<ViewInputs> {
+        self.gviews[1 - self.next_g]
     }
 
     /// Records the `gbuffer` pass for camera `tp` into the next G-buffer, which becomes the
     /// current one; nothing to record when it already shows that view (a still camera).
-    fn record_gbuffer(
+    pub fn record_gbuffer(
         &mut self,
         rec: &mut Recorder,
         tp: &TraceParams,

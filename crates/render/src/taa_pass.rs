@@ -110,8 +110,11 @@ impl Renderer {
         let st = self.surfaces.as_mut().ok_or_else(missing)?;
         let taa = self.taa.as_mut().ok_or_else(missing)?;
         let rec = &mut self.slots[self.slot].rec;
-        st.ensure_gbuffer(rec, tp, &self.scene, &self.images)?;
         let view = ViewInputs::of(tp);
+        // This frame's G-buffer, unless the plan wrote it or the camera is still.
+        if st.current_view() != Some(view) {
+            st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
+        }
         let step = match taa.prev.replace(*tp) {
             _ if self.accumulated == 0 => Step::Restart,
             None => Step::Restart,
