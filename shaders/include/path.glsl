@@ -35,6 +35,11 @@ float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
         uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.frame % P.mask_frames : 0u;
         uint rank = mask[(layer * n + q.y) * n + q.x];
         x = fract((float(rank) + 0.5) / float(n * n) + float(s) * GOLDEN);
+        if (P.mask_mode == MASK_MODE_ROTATE) {
+            // Rotated in 32-bit fixed point: the frame's R2 step, exact for any frame.
+            uint r = P.frame * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
+            x = fract(x + to_unit(r));
+        }
     }
 #endif
     return x;

@@ -25,6 +25,7 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("MASK_MODE_NONE", params::MASK_MODE_NONE)
                 .constant("MASK_MODE_2D", params::MASK_MODE_2D)
                 .constant("MASK_MODE_SPATIOTEMPORAL", params::MASK_MODE_SPATIOTEMPORAL)
+                .constant("MASK_MODE_ROTATE", params::MASK_MODE_ROTATE)
                 .constant("MASK_DIMS", params::MASK_DIMS)
                 .constant("DIMS_PER_BOUNCE", params::DIMS_PER_BOUNCE)
                 .constant("TRACE_GROUP_X", params::TRACE_GROUP_X)

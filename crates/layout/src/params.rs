@@ -156,6 +156,11 @@ const _: () = assert!(TRACE_GROUP_X % 4 == 0 && TRACE_GROUP_Y % 2 == 0);
 pub const MASK_MODE_NONE: u32 = 0;
 pub const MASK_MODE_2D: u32 = 1;
 pub const MASK_MODE_SPATIOTEMPORAL: u32 = 2;
+/// One 2D mask, not shifted: each dimension's value is rotated by frame * alpha (mod 1), alpha
+/// R2's 1/g or 1/g^2 by the dimension's parity. A pixel's values over frames are then an R2
+/// sequence per pair of dimensions (low discrepancy in time), and each frame is the mask's
+/// blue pattern, rotated.
+pub const MASK_MODE_ROTATE: u32 = 3;
 /// Sample dimensions driven by the mask in the mask modes: camera jitter and the first vertex.
 pub const MASK_DIMS: u32 = 9;
 /// Sample dimensions: 0-1 camera jitter; then per path vertex b, base 2 + 7b: light point (2),

@@ -68,6 +68,7 @@ const float DEMODULATE_MIN_ALBEDO = 0.02;
 const uint MASK_MODE_NONE = 0u;
 const uint MASK_MODE_2D = 1u;
 const uint MASK_MODE_SPATIOTEMPORAL = 2u;
+const uint MASK_MODE_ROTATE = 3u;
 const uint MASK_DIMS = 9u;
 const uint DIMS_PER_BOUNCE = 7u;
 const uint TRACE_GROUP_X = 8u;
