@@ -19,19 +19,27 @@ vec3 g_environment;
 // Base colour at the latest primary hit (main sets 1, which a pixel whose rays miss keeps):
 // the divisor of the demodulated sorting key (TRACE_FLAG_DEMODULATE).
 vec3 g_albedo0;
+// Where this pixel reads the mask: the pixel itself, or with TRACE_FLAG_MASK_ANCHORED its
+// seed's anchor (set by main).
+uvec2 g_mask_px;
 
 // Sample dimension `dim` of sample `index` for this pixel: from the mask in the mask modes
-// (first MASK_DIMS dimensions, each read at its own fixed offset so dimensions decorrelate,
+// (first MASK_DIMS dimensions, read at g_mask_px, each at its own fixed offset so dimensions decorrelate,
 // rotated by the golden ratio per sample for spp > 1), else from the seeded sampler.
 float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
     float x = to_unit(TRACE_SAMPLE_BITS(seed, index, dim));
 #if TRACE_MASK
     if (P.mask_mode != MASK_MODE_NONE && dim < MASK_DIMS) {
         uint n = P.mask_size;
-        uvec2 q = (px + uvec2(P.mask_offset_x, P.mask_offset_y) + dim * uvec2(37u, 71u)) % n;
+        uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) + dim * uvec2(37u, 71u)) % n;
         uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.frame % P.mask_frames : 0u;
         uint rank = mask[(layer * n + q.y) * n + q.x];
         x = fract((float(rank) + 0.5) / float(n * n) + float(s) * GOLDEN);
+        if (P.mask_mode == MASK_MODE_ROTATE) {
+            // Rotated in 32-bit fixed point: the frame's R2 step, exact for any frame.
+            uint r = P.frame * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
+            x = fract(x + to_unit(r));
+        }
     }
 #endif
     return x;

@@ -11,6 +11,8 @@ use blueshift_device::{
 #[cfg(test)]
 mod adaptive;
 #[cfg(test)]
+mod anchors;
+#[cfg(test)]
 mod bindings;
 #[cfg(test)]
 mod blue;

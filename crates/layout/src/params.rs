@@ -137,6 +137,13 @@ pub const TRACE_FLAG_NO_JITTER: u32 = 4;
 /// lighting a seed produced rather than its product with the texture, so a seed's rank carries
 /// over across albedo edges. The image (`estimate.rgb`) is unchanged.
 pub const TRACE_FLAG_DEMODULATE: u32 = 8;
+/// `TraceParams::flags`: the mask dimensions read the mask at the seed's anchor (a fixed-point
+/// screen position that follows the pixel's surface, `permute/follow_anchors`) instead of at
+/// the pixel, so a surface keeps its mask values while the image moves.
+pub const TRACE_FLAG_MASK_ANCHORED: u32 = 16;
+/// Fraction bits of an anchor coordinate: a seed packs x and y, each 16-bit fixed point
+/// (8.8), so anchors wrap at 256 px and a mask tile must divide 256.
+pub const ANCHOR_FRAC_BITS: u32 = 8;
 /// Smallest albedo per channel the demodulated key divides by.
 pub const DEMODULATE_MIN_ALBEDO: f32 = 0.02;
 /// Workgroup size of the trace pass (invocations = pixels; llvmpipe runs them in SIMD batches
@@ -149,6 +156,11 @@ const _: () = assert!(TRACE_GROUP_X % 4 == 0 && TRACE_GROUP_Y % 2 == 0);
 pub const MASK_MODE_NONE: u32 = 0;
 pub const MASK_MODE_2D: u32 = 1;
 pub const MASK_MODE_SPATIOTEMPORAL: u32 = 2;
+/// One 2D mask, not shifted: each dimension's value is rotated by frame * alpha (mod 1), alpha
+/// R2's 1/g or 1/g^2 by the dimension's parity. A pixel's values over frames are then an R2
+/// sequence per pair of dimensions (low discrepancy in time), and each frame is the mask's
+/// blue pattern, rotated.
+pub const MASK_MODE_ROTATE: u32 = 3;
 /// Sample dimensions driven by the mask in the mask modes: camera jitter and the first vertex.
 pub const MASK_DIMS: u32 = 9;
 /// Sample dimensions: 0-1 camera jitter; then per path vertex b, base 2 + 7b: light point (2),

@@ -9,6 +9,7 @@
 //!
 //! Frame t sorts against mask M_t(p) = M((p + o_t) mod N) with o_t = t*s mod N for the integer
 //! shift s the retarget table was optimised for (never a rounded R2 value: docs/algorithm.md).
+mod anchors;
 mod cpu;
 mod cycle;
 mod edges;
@@ -19,6 +20,9 @@ mod reproject_gpu;
 mod similar;
 mod skew;
 
+pub use anchors::{
+    ANCHOR_WRAP, FollowAnchors, anchor_at, anchor_pixel, follow_anchors_cpu, initial_anchors,
+};
 pub use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 pub use blueshift_layout::params::SortParams;
 pub use cpu::{pack_mask_moves, retarget_seeds_cpu, sort_key, sort_seeds_cpu};

@@ -103,6 +103,14 @@ pub enum Method {
     Stbn,
     /// FAST mask slices (optimised for a Gaussian blur and an EMA) in the same role.
     Fast,
+    /// The blue-noise mask, not shifted, its values rotated by R2 every frame
+    /// (`MASK_MODE_ROTATE`): blue in every frame, and per pixel an R2 sequence over frames,
+    /// which an accumulation averages like a low-discrepancy sequence.
+    MaskRot,
+    /// [`Method::MaskRot`] with the mask anchored to the image: each pixel reads it at an
+    /// anchor that follows its surface (`permute::follow_anchors`), so under motion a temporal
+    /// filter that follows the surface averages that surface point's own R2 sequence.
+    MaskRotFollow,
     /// Block nets without any sorting (`sobol` with the `blocknet` sampler): each 8x8 block's
     /// seeds share one scrambled Sobol sequence, index advancing per frame. The ablation of
     /// `sort-cycle`: what its sampler gives before the sort.
@@ -163,13 +171,15 @@ impl Method {
     pub const SORT_CYCLE: Method = Method::Permute(CYCLE);
 
     /// The named presets `--method` offers, in the order of the documentation.
-    pub const PRESETS: [(&'static str, Method); 12] = [
+    pub const PRESETS: [(&'static str, Method); 14] = [
         ("white", Method::White),
         ("sobol", Method::Sobol),
         ("hbo19", Method::Hbo19),
         ("mask-r2", Method::MaskR2),
         ("stbn", Method::Stbn),
         ("fast", Method::Fast),
+        ("mask-rot", Method::MaskRot),
+        ("mask-rot-follow", Method::MaskRotFollow),
         ("blocknet", Method::BlockNet),
         ("sort", Method::SORT),
         ("sort-retarget", Method::SORT_RETARGET),
@@ -259,6 +269,19 @@ impl Method {
     /// sample index is the frame's phase in the cycle.
     pub fn cycles_points(self) -> bool {
         self.has(|p| p.points == Points::Cycle)
+    }
+
+    /// Whether the mask is read at anchors that follow the surfaces (`follow_anchors`).
+    pub fn anchors_mask(self) -> bool {
+        self == Method::MaskRotFollow
+    }
+
+    /// The screen-fixed mask method an anchored one reads its mask like (itself otherwise).
+    pub fn mask_method(self) -> Method {
+        match self {
+            Method::MaskRotFollow => Method::MaskRot,
+            m => m,
+        }
     }
 
     /// Whether the retargeting pass runs.

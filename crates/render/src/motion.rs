@@ -9,7 +9,8 @@ use blueshift_layout::motion::{
 };
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::{
-    HistoryKeys, Reprojection, Screen, follow_offset, mask_offset, mean_motion,
+    ANCHOR_WRAP, FollowAnchors, HistoryKeys, Reprojection, Screen, follow_offset, mask_offset,
+    mean_motion,
 };
 
 /// The surfaces on screen: G-buffers (this and the previous frame) and their classes, with the
@@ -33,6 +34,8 @@ pub(crate) struct Surfaces {
     reprojected: bool,
     /// History keys, created when a method first needs them.
     history: Option<HistoryKeys>,
+    /// The anchored masks' pass, created when a method first needs it.
+    anchors: Option<FollowAnchors>,
     /// The view each G-buffer was made for: a frame whose view a G-buffer already shows
     /// takes it instead of tracing it again.
     gviews: [Option<ViewInputs>; 2],
@@ -116,6 +119,7 @@ impl Surfaces {
             last_motion: (0, 0),
             reprojected: false,
             history: None,
+            anchors: None,
             gviews: [None; 2],
             classified: None,
             reprojection_inputs: None,
@@ -335,6 +339,36 @@ impl Renderer {
         self.permute
             .classify_pixels(rec, sort, st.current_gbuffer(), &st.classes)?;
         st.classified = gbuffer.then_some(inputs);
+        Ok(())
+    }
+
+    /// For anchored masks: records this frame's G-buffer and, when the view changed since the
+    /// previous frame, `follow_anchors` into the other seed buffer, which becomes the current
+    /// one (the trace reads it).
+    pub(crate) fn record_anchors(&mut self, tp: &TraceParams) -> Result<()> {
+        if ANCHOR_WRAP % tp.mask_size != 0 {
+            return Err(RenderError::Invalid(format!(
+                "an anchored mask's tile ({}) must divide {ANCHOR_WRAP}",
+                tp.mask_size
+            )));
+        }
+        let st = state(&mut self.surfaces)?;
+        let rec = &mut self.slots[self.slot].rec;
+        st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
+        let moved = st.prev.filter(|p| ViewInputs::of(p) != ViewInputs::of(tp));
+        if let Some(prev) = moved {
+            let pass = match &mut st.anchors {
+                Some(a) => a,
+                slot @ None => slot.insert(FollowAnchors::new(&self.dev)?),
+            };
+            let mp = motion_params(&prev, &self.screen);
+            rec.begin_pass("follow_anchors")?;
+            let (cur, next) = (self.current, 1 - self.current);
+            let (prev_g, cur_g) = (&st.gbuffers[st.next_g], &st.gbuffers[1 - st.next_g]);
+            pass.follow_anchors(rec, &mp, prev_g, cur_g, &self.seeds[cur], &self.seeds[next])?;
+            self.current = next;
+        }
+        st.prev = Some(*tp);
         Ok(())
     }
 }

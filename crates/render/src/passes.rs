@@ -20,6 +20,7 @@ impl Renderer {
             Pass::ClearStatus => Ok(self.slots[self.slot]
                 .rec
                 .fill_buffer(&self.trace_status, 0)?),
+            Pass::FollowAnchors => self.record_anchors(tp),
             Pass::Trace { mask } => self.trace_pass(tp, mask),
             Pass::HistoryKeys => self.record_history_keys(),
             Pass::Classify { gbuffer } => self.record_classes(tp, sort()?, gbuffer),

@@ -47,6 +47,8 @@ pub(crate) struct SortPlan {
 pub(crate) enum Pass {
     /// Zeroes the trace status words.
     ClearStatus,
+    /// The G-buffer and `follow_anchors`: the seeds (anchors) move with their surfaces.
+    FollowAnchors,
     /// The path tracer, writing the estimate from the seeds and `mask`.
     Trace {
         mask: MaskSource,
@@ -92,12 +94,16 @@ impl FramePlan {
     /// Decodes `method` with the paper's block size `block`.
     pub fn new(method: Method, block: u32) -> Self {
         let m = method;
-        let trace_mask = match m {
+        let trace_mask = match m.mask_method() {
             Method::Stbn => MaskSource::Stbn,
             Method::Fast => MaskSource::Fast,
             _ => MaskSource::Mask,
         };
-        let mut passes = vec![Pass::ClearStatus, Pass::Trace { mask: trace_mask }];
+        let mut passes = vec![Pass::ClearStatus];
+        if m.anchors_mask() {
+            passes.push(Pass::FollowAnchors);
+        }
+        passes.push(Pass::Trace { mask: trace_mask });
         if m.sorts() {
             let block = m.block(block);
             let variant = SortVariant {
@@ -140,7 +146,7 @@ impl FramePlan {
         Self {
             reproject: m.reprojects(),
             passes,
-            surfaces: m.reprojects() || m.edge_aware(),
+            surfaces: m.reprojects() || m.edge_aware() || m.anchors_mask(),
             cycle_history: m.cycles_points(),
             swap_seeds: m.retargets(),
             adapts_pairs: m.adapts_pairs(),

@@ -90,6 +90,12 @@ pub(crate) fn seeds_of(
     screen: &Screen,
     assets: &MethodAssets,
 ) -> Result<Vec<u32>> {
+    if cfg.method.anchors_mask() {
+        return Ok(blueshift_permute::initial_anchors(
+            screen.seed_count(),
+            screen.stride(),
+        ));
+    }
     if cfg.effective_sampler() == Sampler::BlockNet {
         return Ok(block_seeds(
             screen.seed_count(),

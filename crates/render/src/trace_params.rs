@@ -1,8 +1,9 @@
 //! The trace pass's push constants per method, and the mask offsets of `mask-r2`.
 use crate::{Method, RenderError, Renderer};
 use blueshift_layout::params::{
-    MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_ADVANCE_INDEX,
-    TRACE_FLAG_DEMODULATE, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
+    MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_ROTATE, MASK_MODE_SPATIOTEMPORAL,
+    TRACE_FLAG_ADVANCE_INDEX, TRACE_FLAG_DEMODULATE, TRACE_FLAG_MASK_ANCHORED,
+    TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
 use blueshift_permute::CYCLE_FRAMES;
 
@@ -15,7 +16,14 @@ impl Renderer {
         let m = c.method;
         let n = self.assets.n;
         let mut flags = 0;
-        if m == Method::White || c.frame_salt {
+        // The mask methods drive only the first MASK_DIMS dimensions: the rest are fresh
+        // white noise every frame, as `white`'s (unsalted, a pixel would repeat its deeper
+        // bounces' directions every frame, and its average would never converge).
+        let white_rest = matches!(
+            m.mask_method(),
+            Method::White | Method::MaskR2 | Method::MaskRot | Method::Stbn | Method::Fast
+        );
+        if white_rest || c.frame_salt {
             flags |= TRACE_FLAG_SALT_FRAME;
         }
         if m.advances_index() {
@@ -27,8 +35,12 @@ impl Renderer {
         if m.demodulates() {
             flags |= TRACE_FLAG_DEMODULATE;
         }
-        let (mask_mode, mask_size, mask_frames, off) = match m {
+        if m.anchors_mask() {
+            flags |= TRACE_FLAG_MASK_ANCHORED;
+        }
+        let (mask_mode, mask_size, mask_frames, off) = match m.mask_method() {
             Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),
+            Method::MaskRot => (MASK_MODE_ROTATE, n, 1, (0, 0)),
             Method::Stbn | Method::Fast => (
                 MASK_MODE_SPATIOTEMPORAL,
                 self.assets.stbn_n,
