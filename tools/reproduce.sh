@@ -4,12 +4,15 @@
 # curated figures in docs/figures/.
 #
 #   bash tools/reproduce.sh               all runs (about 10-25 minutes each on 2 CPU cores)
-#   bash tools/reproduce.sh --only NAME   one run: cornell or textured (RUNS below)
+#   bash tools/reproduce.sh --only NAME   one run: motion, cornell or textured (RUNS below)
+#   bash tools/reproduce.sh --reuse       no eval: rewrite the tables from the reports already
+#                                         in out/results/NAME/ (e.g. after editing the docs)
 #   bash tools/reproduce.sh --quick       smoke run: 12 frames, one sequence; writes
 #                                         out/results/results.md and out/results/figures/,
 #                                         leaves docs/ untouched
 #
-# Eval outputs go to out/results/NAME/ (report.md, report.json, PNGs). Nothing is left
+# The motion run's headline table (per frame / accumulated along the motion) also replaces
+# README.md's results table. Eval outputs go to out/results/NAME/ (report.md, report.json, PNGs). Nothing is left
 # half-written: each run goes to a staging directory that replaces the old one only when it
 # succeeds, and docs files are written to a temporary file and then renamed.
 # Needs only bash, coreutils and awk (besides what scripts/setup.sh installs).
@@ -18,8 +21,9 @@ cd "$(dirname "$0")/.."
 
 # name | arguments of `blueshift eval` besides the common ones below
 RUNS=(
-  "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8"
-  "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1 --bounces 1,8"
+  "motion|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera static,strafe:2.5 --bounces 1,8 --sequences 1"
+  "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8 --sequences 4"
+  "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1 --bounces 1,8 --sequences 4"
 )
 # name | file in the run's output | name under docs/figures/
 FIGURES=(
@@ -36,10 +40,12 @@ FIGURES=(
 usage() { sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; }
 
 quick=0
+reuse=0
 only=""
 while (($#)); do
   case "$1" in
     --quick) quick=1 ;;
+    --reuse) reuse=1 ;;
     --only) [ $# -ge 2 ] || { echo "reproduce: --only needs a NAME" >&2; exit 2; }; only="$2"; shift ;;
     --only=*) only="${1#--only=}" ;;
     -h | --help) usage; exit 0 ;;
@@ -60,11 +66,11 @@ if [ -n "$only" ]; then
 fi
 
 if ((quick)); then
-  common="--spp 1 --frames 12 --width 128 --height 128 --sequences 1"
+  common="--spp 1 --frames 12 --width 128 --height 128"
   results_md=out/results/results.md
   figures_dir=out/results/figures
 else
-  common="--spp 1 --frames 64 --width 128 --height 128 --sequences 4"
+  common="--spp 1 --frames 64 --width 128 --height 128"
   results_md=docs/results.md
   figures_dir=docs/figures
 fi
@@ -78,9 +84,11 @@ for m in begin end; do
   done
 done
 
-source scripts/setup.sh
-cargo build --release --locked -p blueshift
-bin="$CARGO_TARGET_DIR/release/blueshift"
+if ((!reuse)); then
+  source scripts/setup.sh
+  cargo build --release --locked -p blueshift
+  bin="$CARGO_TARGET_DIR/release/blueshift"
+fi
 mkdir -p out/results "$figures_dir"
 
 tmpfiles=()
@@ -100,7 +108,7 @@ tables() { # report.md
       title["RMSE"] = "RMSE ratio to `white`, all pixels (the permutation only moves error: should stay within 3%)"
     }
     NR == 3 { info = $0; sub(/; commit [^;]*;/, ";", info) }
-    /^## Per frame against accumulated/ { skip = 1; next }
+    /^## Per frame/ { skip = 1; next }
     /^## / { skip = 0; cfg = substr($0, 4); ncfg++; cfgs[ncfg] = cfg; next }
     skip { next }
     /^[|] method [|]/ { for (i = 2; i < NF; i++) at[$i] = i; next }
@@ -132,6 +140,12 @@ tables() { # report.md
     }' "$1"
 }
 
+# The headline table of one report.md: per frame / accumulated (TAA along the motion, the
+# EMA for a still camera) per configuration, with the motion of each.
+headline() { # report.md
+  awk '/^## Per frame \/ accumulated along the motion/ { on = 1; next } /^## / { on = 0 } on && /^[|]/' "$1"
+}
+
 # Replaces the text between the markers of NAME in FILE by the contents of BODY, in place
 # (through a temporary file).
 splice() { # name file body
@@ -158,24 +172,38 @@ for r in "${RUNS[@]}"; do
   [ -n "$only" ] && [ "$name" != "$only" ] && continue
   out="out/results/$name"
   stage="out/results/.$name.new"
-  rm -rf "$stage"
-  tmpfiles+=("$stage")
-  echo "== $name: blueshift eval $args $common"
-  # shellcheck disable=SC2086 # the argument lists are word-split on purpose
-  "$bin" eval $args $common --out "$stage"
-  rm -rf "$out"
-  mv "$stage" "$out"
+  if ((reuse)); then
+    [ -f "$out/report.md" ] || { echo "reproduce: --reuse: no $out/report.md" >&2; exit 1; }
+  else
+    rm -rf "$stage"
+    tmpfiles+=("$stage")
+    echo "== $name: blueshift eval $args $common"
+    # shellcheck disable=SC2086 # the argument lists are word-split on purpose
+    "$bin" eval $args $common --out "$stage"
+    rm -rf "$out"
+    mv "$stage" "$out"
+  fi
 
   body="$(mktemp "out/results/.$name.body.XXXXXX")"
   tmpfiles+=("$body")
+  head_body="$(mktemp "out/results/.$name.head.XXXXXX")"
+  tmpfiles+=("$head_body")
   {
     echo
     echo "Command: \`blueshift eval $args $common --out out/results/$name\`"
+    echo
+    echo "**Emitter-free P1 ratio to \`white\`: per frame / accumulated (TAA along the motion; the EMA for a still camera)**"
+    echo
+    headline "$out/report.md"
     echo
     tables "$out/report.md"
     echo
   } > "$body"
   splice "$name" "$work" "$body"
+  if [ "$name" = motion ] && ((!quick)); then
+    { echo; headline "$out/report.md"; echo; } > "$head_body"
+    splice "$name" README.md "$head_body"
+  fi
 
   for f in "${FIGURES[@]}"; do
     IFS='|' read -r fname src dst <<< "$f"
