@@ -1,22 +1,27 @@
-//! `blueshift soak`: a long run of the frame loop that checks, every `--check-every` frames,
-//! that the seed buffer is still a permutation of the initial seeds and that host RSS and
-//! device memory in use have not grown since the warm-up. Prints the figures of every check;
-//! fails (exit 1) on the first violation.
+//! `blueshift soak`: a long run of the frame loop, optionally with a moving camera, that
+//! checks every `--check-every` frames that the seed buffer is still a permutation of the
+//! initial seeds, that every buffer the method carries between frames is finite, and that
+//! host RSS and device memory in use (bytes and live allocations) have not grown since the
+//! warm-up. Prints the figures of every check; fails (exit 1) on the first violation.
 use crate::GpuOpts;
-use crate::args::{MethodArgs, preset_name};
+use crate::args::MethodArgs;
 use anyhow::{Result, bail};
 use blueshift_permute::is_permutation_of;
-use blueshift_render::{Method, Renderer};
+use blueshift_render::{CameraPath, Method, Renderer};
 use std::time::Instant;
 
 /// `soak`'s flags. `--method` must permute seeds (a sort preset or a spelled-out `sort:...`).
 #[derive(clap::Args, Debug)]
-#[command(mut_arg("method", |a| a.default_value(preset_name(Method::SORT_RETARGET))))]
 pub struct SoakArgs {
     #[command(flatten)]
     pub method: MethodArgs,
     #[arg(long, default_value_t = 10_000)]
     pub frames: u32,
+    /// Camera motion, as for `render` (static, pan:PX, orbit:DEG, swing:DEG, strafe:PX,
+    /// orbit-view:DEG or a keyframe file): moving views exercise the reprojection, the
+    /// G-buffer and the restarts of the running mean.
+    #[arg(long, default_value = "static", value_parser = CameraPath::parse)]
+    pub camera_path: CameraPath,
     /// Check the seeds and memory every this many frames.
     #[arg(long, default_value_t = 1000)]
     pub check_every: u32,
@@ -45,6 +50,35 @@ pub fn rss_kib() -> Result<u64> {
 struct Baseline {
     rss_kib: u64,
     device_bytes: u64,
+    allocations: usize,
+}
+
+impl Baseline {
+    fn now(dev: &blueshift_device::Device) -> Result<Self> {
+        Ok(Self {
+            rss_kib: rss_kib()?,
+            device_bytes: dev.allocated_bytes(),
+            allocations: dev.allocations().len(),
+        })
+    }
+}
+
+/// The first buffer carried between frames with a value that is not finite, as an error
+/// message; the number of values checked otherwise.
+fn check_history(r: &Renderer) -> Result<usize, String> {
+    let mut checked = 0;
+    for h in r.read_history_state().map_err(|e| e.to_string())? {
+        let bad = h.bad_values();
+        if bad > 0 {
+            return Err(format!(
+                "{bad} of the {} values of {} are not finite",
+                h.values.len(),
+                h.name
+            ));
+        }
+        checked += h.values.len();
+    }
+    Ok(checked)
 }
 
 pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
@@ -73,13 +107,23 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
     let scene = a.method.scene.load_scene()?;
     let assets = a.method.scene.load_assets()?;
     let dev = gpu.device()?;
+    let path = &a.camera_path;
+    let (view, base_offset) = path.view_window(a.frames, cfg.width, cfg.height);
+    let cfg = blueshift_render::RenderConfig {
+        view_size: Some(view),
+        ..cfg
+    };
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
+    let start = scene.camera_or_default();
+    let path = path.clone().fit(&scene.bounds(), &start, view);
     println!(
-        "soak: {} frames of {} at {}x{}, spp {}, bounces {}, block {} on {}; check every {}",
+        "soak: {} frames of {} at {}x{}, camera {}, spp {}, bounces {}, block {} on {}; \
+         check every {}",
         a.frames,
         cfg.method,
         cfg.width,
         cfg.height,
+        path.label(),
         cfg.spp,
         cfg.bounces,
         cfg.block,
@@ -90,17 +134,20 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
     let mut window = Instant::now();
     let mut worst = (0i64, 0i64);
     for f in 1..=a.frames {
+        // Frame f - 1 of the path: the first frame shows the path's start.
+        let g = f - 1;
+        r.set_camera(path.camera(&start, g));
+        let o = path.view_offset(g);
+        r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
         r.render_frame()?;
         if f == warmup {
-            base = Some(Baseline {
-                rss_kib: rss_kib()?,
-                device_bytes: dev.allocated_bytes(),
-            });
+            let b = Baseline::now(&dev)?;
             println!(
-                "baseline after {f} frames: RSS {} KiB, device memory {} bytes",
-                rss_kib()?,
-                dev.allocated_bytes()
+                "baseline after {f} frames: RSS {} KiB, device memory {} bytes in {} \
+                 allocations",
+                b.rss_kib, b.device_bytes, b.allocations
             );
+            base = Some(b);
         }
         if f % a.check_every != 0 && f != a.frames {
             continue;
@@ -108,30 +155,47 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
         let ms = window.elapsed().as_secs_f64() * 1e3 / f64::from(a.check_every);
         let seeds = r.read_seeds()?;
         let permutation = is_permutation_of(&seeds, r.initial_seeds());
-        let (rss, device) = (rss_kib()?, dev.allocated_bytes());
-        let b = base
-            .as_ref()
-            .map_or((rss, device), |b| (b.rss_kib, b.device_bytes));
-        let (d_rss, d_dev) = (rss as i64 - b.0 as i64, device as i64 - b.1 as i64);
+        let history = check_history(&r);
+        // Taken after the read-backs, whose staging buffers are gone by then.
+        let now = Baseline::now(&dev)?;
+        let (rss, device) = (now.rss_kib, now.device_bytes);
+        let b = base.as_ref().unwrap_or(&now);
+        let (d_rss, d_dev) = (
+            rss as i64 - b.rss_kib as i64,
+            device as i64 - b.device_bytes as i64,
+        );
+        let d_alloc = now.allocations as i64 - b.allocations as i64;
         worst = (worst.0.max(d_rss), worst.1.max(d_dev));
         println!(
-            "frame {f:>8}: seeds {} ({} seeds), RSS {rss} KiB ({d_rss:+} KiB), device memory \
-             {device} bytes ({d_dev:+} bytes), {ms:.2} ms/frame",
+            "frame {f:>8}: seeds {} ({} seeds), history {}, RSS {rss} KiB ({d_rss:+} KiB), \
+             device memory {device} bytes ({d_dev:+} bytes) in {} allocations ({d_alloc:+}), \
+             {ms:.2} ms/frame",
             if permutation {
                 "a permutation"
             } else {
                 "NOT a permutation"
             },
-            seeds.len()
+            seeds.len(),
+            match &history {
+                Ok(n) => format!("finite ({n} values)"),
+                Err(_) => "NOT finite".to_string(),
+            },
+            now.allocations,
         );
         if !permutation {
             bail!("frame {f}: the seed buffer is no longer a permutation of the initial seeds");
+        }
+        if let Err(e) = history {
+            bail!("frame {f}: {e}");
         }
         if d_rss > a.rss_tolerance_kib as i64 {
             bail!(
                 "frame {f}: host RSS grew by {d_rss} KiB since the warm-up (tolerance {} KiB)",
                 a.rss_tolerance_kib
             );
+        }
+        if d_alloc > 0 {
+            bail!("frame {f}: {d_alloc} more device allocations live than after the warm-up");
         }
         if d_dev > a.device_tolerance as i64 {
             bail!(
@@ -144,9 +208,12 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
     }
     crate::check_validation(&dev)?;
     println!(
-        "soak passed: {} frames, seeds a permutation at every check, max growth RSS {:+} KiB, \
-         device memory {:+} bytes",
-        a.frames, worst.0, worst.1
+        "soak passed: {} frames, camera {}, seeds a permutation and history finite at every \
+         check, max growth RSS {:+} KiB, device memory {:+} bytes",
+        a.frames,
+        path.label(),
+        worst.0,
+        worst.1
     );
     Ok(())
 }

@@ -404,6 +404,8 @@ fn other_bad_arguments_are_errors_not_panics() {
         &o,
         &["--method must permute seeds", "sort-retarget", "not white"],
     );
+    let o = c.run(&["soak", "--camera-path", "/nonexistent/path.json"], &[]);
+    c.expect_error(&o, &["/nonexistent/path.json", "orbit-view:DEG"]);
 }
 
 #[test]

@@ -1,26 +1,59 @@
 //! A 500-frame soak of the frame loop (the `blueshift soak` command at a tiny size): the seed
-//! buffer stays a permutation and host/device memory stay flat; the figures are printed.
-use std::process::Command;
+//! buffer stays a permutation and host/device memory stay flat; the figures are printed. And
+//! short soaks with a moving camera, whose checks also read back the method's history.
+use std::process::{Command, Output};
 
-#[test]
-fn soak_500_frames_keeps_the_permutation_and_flat_memory() {
+fn soak(args: &[&str]) -> Output {
     let dir = tempfile::tempdir().expect("tempdir");
-    let out = Command::new(env!("CARGO_BIN_EXE_blueshift"))
-        .args([
-            "soak",
-            "--frames",
-            "500",
-            "--check-every",
-            "100",
-            "--warmup",
-            "50",
-        ])
+    Command::new(env!("CARGO_BIN_EXE_blueshift"))
+        .arg("soak")
+        .args(args)
         .args(["--width", "24", "--height", "20", "--bounces", "1"])
         .env("XDG_RUNTIME_DIR", dir.path())
         .env_remove("BLUESHIFT_TEST_DEVICE_LOST")
         .env_remove("BLUESHIFT_MAX_STORAGE_BUFFER_RANGE")
         .output()
-        .expect("run blueshift soak");
+        .expect("run blueshift soak")
+}
+
+/// The default method (a point-cycle history) on a strafe and a history-key method (history
+/// means, reprojection) on an in-view orbit: every check reads finite history and no new
+/// allocation.
+#[test]
+fn moving_soaks_keep_the_permutation_and_a_finite_history() {
+    for (method, path) in [
+        ("sort-cycle", "strafe:2.5"),
+        ("sort-grid-adaptive", "orbit-view:3"),
+    ] {
+        let out = soak(&[
+            "--method",
+            method,
+            "--camera-path",
+            path,
+            "--frames",
+            "30",
+            "--check-every",
+            "10",
+            "--warmup",
+            "5",
+        ]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "stdout:\n{stdout}\nstderr:\n{stderr}");
+        assert!(stdout.contains(&format!("camera {path}")), "{stdout}");
+        let checks: Vec<&str> = stdout.lines().filter(|l| l.starts_with("frame ")).collect();
+        assert_eq!(checks.len(), 3, "{stdout}");
+        for line in checks {
+            assert!(line.contains("seeds a permutation"), "{line}");
+            assert!(line.contains("history finite"), "{line}");
+            assert!(line.contains("allocations (+0)"), "{line}");
+        }
+    }
+}
+
+#[test]
+fn soak_500_frames_keeps_the_permutation_and_flat_memory() {
+    let out = soak(&["--frames", "500", "--check-every", "100", "--warmup", "50"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "stdout:\n{stdout}\nstderr:\n{stderr}");

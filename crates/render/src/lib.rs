@@ -47,6 +47,7 @@ pub use method::{
 };
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
+pub use readback::HistoryState;
 pub use seeds::{SeedMap, block_seeds, initial_seeds, tile_seeds};
 pub use slots::{Completed, FRAMES_IN_FLIGHT, FrameOutput};
 pub use stats::{FrameStats, LoopCount, LoopStats};

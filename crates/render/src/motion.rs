@@ -139,6 +139,11 @@ impl Surfaces {
         self.history.as_ref().map(|h| &h.mean)
     }
 
+    /// The history keys, once a frame has made them.
+    pub fn history_keys(&self) -> Option<&HistoryKeys> {
+        self.history.as_ref()
+    }
+
     /// The G-buffer written by the last frame.
     pub fn current_gbuffer(&self) -> &Buffer {
         &self.gbuffers[1 - self.next_g]

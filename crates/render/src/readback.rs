@@ -47,10 +47,83 @@ impl Renderer {
     pub fn initial_seeds(&self) -> &[u32] {
         &self.initial_seeds
     }
+    /// Every buffer the method carries from frame to frame besides the seeds, as floats over
+    /// the visible pixels: the running mean (`sort-cycle`'s point cycle ranks against it),
+    /// `sort-cycle`'s per-phase keys and the history keys' means and frame counts. All must
+    /// stay finite over any run; only [`HistoryState::nan_is_none`] buffers use NaN, as "no
+    /// history". The buffers a method has not made yet are left out.
+    pub fn read_history_state(&self) -> Result<Vec<HistoryState>> {
+        let (w, h, stride) = (
+            self.cfg.width as usize,
+            self.cfg.height as usize,
+            self.screen.stride() as usize,
+        );
+        let visible = |at: &dyn Fn(usize) -> f32| -> Vec<f32> {
+            (0..h)
+                .flat_map(|y| (0..w).map(move |x| y * stride + x))
+                .map(at)
+                .collect()
+        };
+        let mut out = vec![HistoryState::of(
+            "frame.accum",
+            self.read_accum()?.iter().flatten().copied().collect(),
+        )];
+        if let Some(c) = &self.cycle {
+            // (seed, key bits) per phase slot and visible pixel; unwritten slots are zeroed.
+            let slots = c.history.read::<[u32; 2]>()?;
+            let keys = slots.iter().map(|&[_, k]| f32::from_bits(k)).collect();
+            out.push(HistoryState::of("cycle.history keys", keys));
+        }
+        if let Some(hk) = self.surfaces.as_ref().and_then(|s| s.history_keys()) {
+            // (mean, frames) per padded pixel: the padding is never written, so left out.
+            let hist = hk.current().read::<[f32; 2]>()?;
+            out.push(HistoryState::of(
+                "history means",
+                visible(&|i: usize| hist[i][0]),
+            ));
+            out.push(HistoryState::of(
+                "history frames",
+                visible(&|i: usize| hist[i][1]),
+            ));
+            let mean = hk.mean.read::<f32>()?;
+            out.push(HistoryState {
+                nan_is_none: true,
+                ..HistoryState::of("history.mean", mean[..w * h].to_vec())
+            });
+        }
+        Ok(out)
+    }
     pub fn screen(&self) -> Screen {
         self.screen
     }
     fn pixels(&self) -> usize {
         self.cfg.width as usize * self.cfg.height as usize
+    }
+}
+
+/// One buffer of [`Renderer::read_history_state`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryState {
+    pub name: &'static str,
+    pub values: Vec<f32>,
+    /// NaN marks a pixel without history here (the means the sort ranks against).
+    pub nan_is_none: bool,
+}
+
+impl HistoryState {
+    fn of(name: &'static str, values: Vec<f32>) -> Self {
+        Self {
+            name,
+            values,
+            nan_is_none: false,
+        }
+    }
+
+    /// How many values are not finite (NaN counts only where it does not mean "none").
+    pub fn bad_values(&self) -> usize {
+        self.values
+            .iter()
+            .filter(|v| v.is_infinite() || (v.is_nan() && !self.nan_is_none))
+            .count()
     }
 }
