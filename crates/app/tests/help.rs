@@ -88,7 +88,7 @@ fn each_command_keeps_its_default_method() {
         ("render", Method::SORT_CYCLE),
         ("view", Method::SORT_CYCLE),
         ("bench", Method::White),
-        ("soak", Method::SORT_RETARGET),
+        ("soak", Method::SORT_CYCLE),
     ] {
         let h = help(command);
         let want = format!("[default: {}]", default.name());
