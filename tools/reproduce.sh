@@ -4,7 +4,7 @@
 # curated figures in docs/figures/.
 #
 #   bash tools/reproduce.sh               all runs (about 10-25 minutes each on 2 CPU cores)
-#   bash tools/reproduce.sh --only NAME   one run: motion, cornell or textured (RUNS below)
+#   bash tools/reproduce.sh --only NAME   one run: motion, motion-textured, cornell or textured
 #   bash tools/reproduce.sh --reuse       no eval: rewrite the tables from the reports already
 #                                         in out/results/NAME/ (e.g. after editing the docs)
 #   bash tools/reproduce.sh --quick       smoke run: 12 frames, one sequence; writes
@@ -22,6 +22,7 @@ cd "$(dirname "$0")/.."
 # name | arguments of `blueshift eval` besides the common ones below
 RUNS=(
   "motion|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera static,strafe:2.5 --bounces 1,8 --sequences 1"
+  "motion-textured|--scene textured --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera strafe:2.5 --bounces 1,8 --sequences 1"
   "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8 --sequences 4"
   "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1 --bounces 1,8 --sequences 4"
 )
