@@ -10,8 +10,8 @@
 //! anchor of pixel s = floor(c) plus c's offset from s's centre. Under a rigid motion the
 //! anchors of a surface stay exactly where they were on it; pixels with no such surface
 //! (sky, disocclusions) keep their own anchor. CPU twin of shaders/permute/follow_anchors.comp.
-use crate::reproject::project_previous;
-use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_TIE_BIAS};
+use crate::reproject::seen_before;
+use blueshift_layout::motion::{GBufferTexel, MotionParams};
 use blueshift_layout::params::ANCHOR_FRAC_BITS;
 use glam::Vec2;
 
@@ -59,21 +59,10 @@ pub fn follow_anchors_cpu(
     for y in 0..p.height {
         for x in 0..p.width {
             let g = &cur[(y * p.width + x) as usize];
-            let (c, z) = project_previous(p, g.position);
-            let f = (c + REPROJECT_TIE_BIAS).floor();
-            let inside = z > 0.0
-                && f.x >= 0.0
-                && f.y >= 0.0
-                && f.x < p.width as f32
-                && f.y < p.height as f32;
-            if !inside || g.material == 0 {
-                continue;
+            if let Some((c, (sx, sy))) = seen_before(p, prev, g) {
+                let f = Vec2::new(sx as f32, sy as f32);
+                out[(y * pw + x) as usize] = moved(anchors[(sy * pw + sx) as usize], c, f);
             }
-            let (sx, sy) = (f.x as u32, f.y as u32);
-            if !crate::similar(g, &prev[(sy * p.width + sx) as usize]) {
-                continue;
-            }
-            out[(y * pw + x) as usize] = moved(anchors[(sy * pw + sx) as usize], c, f);
         }
     }
     out

@@ -30,6 +30,25 @@ pub fn project_previous(p: &MotionParams, position: Vec3) -> (Vec2, f32) {
     )
 }
 
+/// Where the previous frame saw the surface of G-buffer texel `g`: the continuous position of
+/// its hit point and the pixel there, if that pixel is on screen and showed a `similar`
+/// surface (sky never has a source).
+pub(crate) fn seen_before(
+    p: &MotionParams,
+    prev: &[GBufferTexel],
+    g: &GBufferTexel,
+) -> Option<(Vec2, (u32, u32))> {
+    let (c, z) = project_previous(p, g.position);
+    let f = (c + REPROJECT_TIE_BIAS).floor();
+    let inside =
+        z > 0.0 && f.x >= 0.0 && f.y >= 0.0 && f.x < p.width as f32 && f.y < p.height as f32;
+    if !inside || g.material == 0 {
+        return None;
+    }
+    let s = (f.x as u32, f.y as u32);
+    crate::similar(g, &prev[(s.1 * p.width + s.0) as usize]).then_some((c, s))
+}
+
 /// Step 1 (`reproject_motion`): source pixel (padded index) per padded pixel, or NONE.
 pub fn reproject_motion_cpu(
     p: &MotionParams,
@@ -41,18 +60,7 @@ pub fn reproject_motion_cpu(
     for y in 0..p.height {
         for x in 0..p.width {
             let g = &cur[(y * p.width + x) as usize];
-            let (c, z) = project_previous(p, g.position);
-            let f = (c + REPROJECT_TIE_BIAS).floor();
-            let inside = z > 0.0
-                && f.x >= 0.0
-                && f.y >= 0.0
-                && f.x < p.width as f32
-                && f.y < p.height as f32;
-            if !inside || g.material == 0 {
-                continue;
-            }
-            let (sx, sy) = (f.x as u32, f.y as u32);
-            if crate::similar(g, &prev[(sy * p.width + sx) as usize]) {
+            if let Some((_, (sx, sy))) = seen_before(p, prev, g) {
                 src[(y * pw + x) as usize] = sy * pw + sx;
             }
         }
