@@ -145,7 +145,9 @@ fn sort_cycle_seeds_stay_in_their_blocks() {
 
 /// A still view reuses the G-buffer and the surface classes: after the first frame neither
 /// pass runs, until the camera or the view window moves; then both run and the G-buffer is
-/// the moved camera's (CPU twin).
+/// the moved camera's (CPU twin). `grouping=surfaces` classifies every moved frame; the
+/// default's `still-surfaces` gives a moved frame one class per block (zeroed classes, no
+/// G-buffer) and classifies the first still frame after it.
 #[test]
 fn still_view_reuses_gbuffer_and_classes() {
     let gpu = Gpu::new();
@@ -160,7 +162,6 @@ fn still_view_reuses_gbuffer_and_classes() {
         };
         Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap()
     };
-    let mut r = renderer(Method::SORT_CYCLE);
     let ran = |r: &mut Renderer| {
         let names: Vec<String> = r
             .render_frame()
@@ -173,31 +174,62 @@ fn still_view_reuses_gbuffer_and_classes() {
         assert_eq!(has("gbuffer"), has("classify_pixels"), "{names:?}");
         has("gbuffer")
     };
-    assert!(ran(&mut r), "the first frame needs a G-buffer");
-    assert!(
-        !ran(&mut r) && !ran(&mut r),
-        "a still view recomputed its G-buffer"
-    );
     let mut cam = s.camera_or_default();
     cam.position.x += 0.05;
-    r.set_camera(cam);
-    let tp = r.trace_params();
-    assert!(ran(&mut r), "a moved camera kept the old G-buffer");
-    let got = r
-        .read_gbuffer()
-        .unwrap()
-        .expect("sort-cycle has a G-buffer");
-    let want = blueshift_render::gbuffer_cpu(&sg, &tp);
-    let same = got
-        .iter()
-        .zip(&want)
-        .filter(|(g, c)| g.material == c.material)
-        .count();
-    // Materials agree exactly (the traversal is bit-exact; tests/src/motion.rs checks the rest).
-    assert_eq!(same, want.len());
-    assert!(!ran(&mut r));
-    r.set_view_offset((0.5, 0.0));
-    assert!(ran(&mut r), "a moved view window kept the old G-buffer");
+    let surfaces: Method = "sort-cycle:grouping=surfaces".parse().unwrap();
+    for (m, still_only) in [(surfaces, false), (Method::SORT_CYCLE, true)] {
+        let mut r = renderer(m);
+        assert!(ran(&mut r), "{m}: the first frame needs a G-buffer");
+        assert!(
+            !ran(&mut r) && !ran(&mut r),
+            "{m}: a still view recomputed its G-buffer"
+        );
+        r.set_camera(cam);
+        let tp = r.trace_params();
+        if still_only {
+            assert!(!ran(&mut r), "{m}: a moved frame traced a G-buffer");
+            let classes = r.read_classes().unwrap().expect("classes");
+            assert!(
+                classes.iter().all(|&c| c == 0),
+                "{m}: not one class per block"
+            );
+            assert!(
+                ran(&mut r),
+                "{m}: the still frame after a move did not classify"
+            );
+            let classes = r.read_classes().unwrap().expect("classes");
+            assert!(
+                classes.iter().any(|&c| c != 0),
+                "{m}: no surfaces after the move"
+            );
+        } else {
+            assert!(ran(&mut r), "{m}: a moved camera kept the old G-buffer");
+        }
+        let got = r
+            .read_gbuffer()
+            .unwrap()
+            .expect("sort-cycle has a G-buffer");
+        let want = blueshift_render::gbuffer_cpu(&sg, &tp);
+        let same = got
+            .iter()
+            .zip(&want)
+            .filter(|(g, c)| g.material == c.material)
+            .count();
+        // Materials agree exactly (the traversal is bit-exact; tests/src/motion.rs checks the
+        // rest).
+        assert_eq!(same, want.len(), "{m}");
+        assert!(!ran(&mut r), "{m}");
+        r.set_view_offset((0.5, 0.0));
+        assert_eq!(
+            ran(&mut r),
+            !still_only,
+            "{m}: after moving the view window"
+        );
+        assert!(
+            ran(&mut r) == still_only,
+            "{m}: the view window stands still"
+        );
+    }
 
     // Reprojecting methods keep two G-buffers (this frame's and the last): with a still view
     // each is traced once, then both stand until the camera moves. The reprojection runs from

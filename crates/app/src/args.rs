@@ -169,7 +169,7 @@ impl SceneArgs {
     /// Loads the scene lit as the flags say, printing its warnings (one line each).
     pub fn load_scene(&self) -> Result<Scene> {
         let spec = self.scene.as_str();
-        let path = scene_path(spec);
+        let path = self.scene_path();
         let (environment, map_warning) = self.lights.source()?;
         let opts = blueshift_scene::LoadOptions {
             environment,
@@ -193,20 +193,26 @@ impl SceneArgs {
     }
 
     pub fn load_assets(&self) -> Result<MethodAssets> {
-        let dir = self.assets.clone().unwrap_or_else(default_assets_dir);
-        Ok(MethodAssets::load(&dir)?)
+        Ok(MethodAssets::load(
+            &self.assets.clone().unwrap_or_else(default_assets_dir),
+        )?)
     }
-}
 
-/// Resolves a preset name to the bundled file, else treats it as a path.
-pub fn scene_path(spec: &str) -> PathBuf {
-    let preset = default_assets_dir()
-        .join("scenes")
-        .join(format!("{spec}.gltf"));
-    if !spec.contains('/') && !spec.contains('.') && preset.exists() {
-        preset
-    } else {
-        PathBuf::from(spec)
+    /// The file `--scene` names: a bundled preset from `scenes/` of `--assets` or of the
+    /// default assets directory (`--assets` may hold masks only), else the path as given.
+    pub fn scene_path(&self) -> PathBuf {
+        let spec = self.scene.as_str();
+        if spec.contains(['/', '.']) {
+            return PathBuf::from(spec);
+        }
+        let preset = |dir: PathBuf| dir.join("scenes").join(format!("{spec}.gltf"));
+        self.assets
+            .iter()
+            .cloned()
+            .chain([default_assets_dir()])
+            .map(preset)
+            .find(|p| p.exists())
+            .unwrap_or_else(|| PathBuf::from(spec))
     }
 }
 

@@ -20,6 +20,23 @@ fn missing_scene_file() {
     );
 }
 
+/// A preset is looked up in `--assets` first: with the default assets directory (here
+/// `BLUESHIFT_ASSETS`) empty, `--assets` alone must find it; without it the preset is missing.
+#[test]
+fn scene_presets_come_from_the_assets_flag() {
+    let c = Case::new();
+    let empty = c.path("empty-assets");
+    std::fs::create_dir(&empty).expect("mkdir");
+    let env = [("BLUESHIFT_ASSETS", empty.to_str().expect("utf-8"))];
+    let o = c.render(&["--scene", "edges"], &env);
+    c.expect_error(&o, &["'edges' is neither a file nor a preset"]);
+    let a = assets();
+    let a = a.to_str().expect("utf-8");
+    let o = c.render(&["--scene", "edges", "--assets", a], &env);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "stderr:\n{stderr}");
+}
+
 #[test]
 fn unreadable_scene_file() {
     let c = Case::new();

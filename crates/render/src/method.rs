@@ -22,6 +22,10 @@ pub enum Grouping {
     Blocks,
     /// Each surface of the block (G-buffer classes, `permute/classify_pixels`).
     Surfaces,
+    /// Surfaces while the view stands still, the whole block while it moves: the classes need
+    /// a pixel-centre G-buffer, which a still view traces once but a moving one every frame
+    /// (most of the passes' cost under motion), and under motion they gain little.
+    StillSurfaces,
 }
 
 /// How seeds reach the next frame's mask.
@@ -148,7 +152,7 @@ const HISTORY: Permutation = Permutation {
 };
 
 const CYCLE: Permutation = Permutation {
-    grouping: Grouping::Surfaces,
+    grouping: Grouping::StillSurfaces,
     transport: Transport::None,
     points: Points::Cycle,
     ..PAPER
@@ -300,9 +304,15 @@ impl Method {
         self.has(|p| p.key != Key::Raw)
     }
 
-    /// Whether sorting ranks within G-buffer surface classes.
+    /// Whether sorting ranks within G-buffer surface classes (at least while the view is still).
     pub fn edge_aware(self) -> bool {
-        self.has(|p| p.grouping == Grouping::Surfaces)
+        self.has(|p| p.grouping != Grouping::Blocks)
+    }
+
+    /// Whether the classes are made only while the view is still (one class per block while it
+    /// moves).
+    pub fn classifies_still_only(self) -> bool {
+        self.has(|p| p.grouping == Grouping::StillSurfaces)
     }
 
     /// Whether the sorting pass ranks history keys (`permute/history_key`).

@@ -5,7 +5,7 @@ use crate::method::{Grouping, Key, Method, Motion, Pairs, Permutation, Points, T
 /// (field, values in order of their enum) of every field, for parsing and help.
 const FIELDS: [(&str, &[&str]); 6] = [
     ("key", &["raw", "demod", "history"]),
-    ("grouping", &["blocks", "surfaces"]),
+    ("grouping", &["blocks", "surfaces", "still-surfaces"]),
     ("transport", &["none", "retarget", "grid"]),
     ("motion", &["none", "reproject"]),
     ("pairs", &["off", "thin", "adaptive", "all"]),
@@ -41,7 +41,13 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
     };
     match field {
         "key" => p.key = [Key::Raw, Key::Demodulated, Key::History][i],
-        "grouping" => p.grouping = [Grouping::Blocks, Grouping::Surfaces][i],
+        "grouping" => {
+            p.grouping = [
+                Grouping::Blocks,
+                Grouping::Surfaces,
+                Grouping::StillSurfaces,
+            ][i]
+        }
         "transport" => p.transport = [Transport::None, Transport::Retarget, Transport::Grid][i],
         "motion" => p.motion = [Motion::None, Motion::Reproject][i],
         "pairs" => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive, Pairs::All][i],
@@ -60,6 +66,13 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
             "pairs={} needs transport=grid (pairs replace the next frame's mask there)",
             fields(p)[4].1
         ));
+    }
+    if p.grouping == Grouping::StillSurfaces && p.motion != Motion::None {
+        return Err(
+            "grouping=still-surfaces needs motion=none (a reprojecting method traces the \
+             G-buffer every frame anyway: use grouping=surfaces)"
+                .into(),
+        );
     }
     if p.points == Points::Cycle && (p.transport != Transport::None || p.motion != Motion::None) {
         return Err(
@@ -138,7 +151,7 @@ mod tests {
         assert_eq!(m.name(), "sort:key=demod,transport=grid");
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
-        let c: Method = "sort:points=cycle,grouping=surfaces"
+        let c: Method = "sort:points=cycle,grouping=still-surfaces"
             .parse()
             .expect("valid");
         assert_eq!(c, Method::SORT_CYCLE);
@@ -158,5 +171,6 @@ mod tests {
         assert!(err("white:key=raw").contains("not a permutation method"));
         assert!(err("sort-retarget:points=cycle").contains("needs transport=none"));
         assert!(err("sort-cycle:points=loop").contains("points: fixed, cycle"));
+        assert!(err("sort-grid-history:grouping=still-surfaces").contains("needs motion=none"));
     }
 }

@@ -42,6 +42,11 @@ pub(crate) struct Surfaces {
     /// What the current G-buffer and classes were made from, when no reprojection has
     /// written a G-buffer since: a frame with the same view and blocks reuses both.
     classified: Option<ClassInputs>,
+    /// The previous frame's classification inputs (None after a reset), which tell whether
+    /// the view moved (`grouping=still-surfaces`).
+    class_view: Option<ClassInputs>,
+    /// Whether `classes` holds one class per block (all zero), as a moving view leaves it.
+    classes_blocks: bool,
     /// What the last reprojection was computed from, and once checked, whether its source
     /// map sends every pixel to itself or nowhere (a still view).
     reprojection_inputs: Option<(ReprojectionInputs, Option<bool>)>,
@@ -122,6 +127,8 @@ impl Surfaces {
             anchors: None,
             gviews: [None; 2],
             classified: None,
+            class_view: None,
+            classes_blocks: false,
             reprojection_inputs: None,
         })
     }
@@ -132,6 +139,7 @@ impl Surfaces {
         self.prev_offset = None;
         self.last_motion = (0, 0);
         self.classified = None;
+        self.class_view = None;
     }
 
     /// The history means the sorting pass ranks against (history-key methods).
@@ -324,25 +332,39 @@ impl Renderer {
     }
 
     /// For edge-aware methods: records the G-buffer (with `gbuffer`: when `prepare_frame` did
-    /// not write it) and the classes the sorting pass then reads.
+    /// not write it) and the classes the sorting pass then reads. With `still_only`, a frame
+    /// whose view moved since the previous one gets one class per block (zeroed classes; the
+    /// sort then ranks as `grouping=blocks`) and no G-buffer; the first frame of a sequence
+    /// and every still one classify.
     pub(crate) fn record_classes(
         &mut self,
         tp: &TraceParams,
         sort: &blueshift_permute::SortParams,
         gbuffer: bool,
+        still_only: bool,
     ) -> Result<()> {
         let st = state(&mut self.surfaces)?;
         let rec = &mut self.slots[self.slot].rec;
         let inputs = ClassInputs::of(tp, sort);
+        let moved = st.class_view.replace(inputs).is_some_and(|v| v != inputs);
         if gbuffer {
             if st.classified == Some(inputs) {
                 return Ok(()); // a still view: last frame's G-buffer and classes stand
+            }
+            if still_only && moved {
+                if !st.classes_blocks {
+                    rec.fill_buffer(&st.classes, 0)?;
+                    st.classes_blocks = true;
+                }
+                st.classified = None;
+                return Ok(());
             }
             st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
         }
         rec.begin_pass("classify_pixels")?;
         self.permute
             .classify_pixels(rec, sort, st.current_gbuffer(), &st.classes)?;
+        st.classes_blocks = false;
         st.classified = gbuffer.then_some(inputs);
         Ok(())
     }

@@ -23,7 +23,10 @@ impl Renderer {
             Pass::FollowAnchors => self.record_anchors(tp),
             Pass::Trace { mask } => self.trace_pass(tp, mask),
             Pass::HistoryKeys => self.record_history_keys(),
-            Pass::Classify { gbuffer } => self.record_classes(tp, sort()?, gbuffer),
+            Pass::Classify {
+                gbuffer,
+                still_only,
+            } => self.record_classes(tp, sort()?, gbuffer, still_only),
             Pass::ClearSortStats if sort()?.count_skew != 0 => {
                 Ok(self.slots[self.slot].rec.fill_buffer(&self.sort_stats, 0)?)
             }

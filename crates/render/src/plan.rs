@@ -56,9 +56,11 @@ pub(crate) enum Pass {
     /// `history_key` on this frame's estimate (reads the reprojection's source map).
     HistoryKeys,
     /// Surface classes for the sort (with the G-buffer first unless the reprojection
-    /// submission wrote it); a still view reuses the last ones.
+    /// submission wrote it); a still view reuses the last ones. With `still_only`, a frame
+    /// whose view moved since the previous one takes one class per block instead.
     Classify {
         gbuffer: bool,
+        still_only: bool,
     },
     /// Zeroes the sorting statistics the adaptive pairs count into.
     ClearSortStats,
@@ -130,6 +132,7 @@ impl FramePlan {
             if m.edge_aware() {
                 passes.push(Pass::Classify {
                     gbuffer: !m.reprojects(),
+                    still_only: m.classifies_still_only(),
                 });
             }
             if m.adapts_pairs() {

@@ -36,6 +36,13 @@ impl Renderer {
             None => Ok(None),
         }
     }
+    /// The surface classes the last sort read (edge-aware methods), per pixel.
+    pub fn read_classes(&self) -> Result<Option<Vec<u32>>> {
+        match &self.surfaces {
+            Some(m) => Ok(Some(m.classes.read()?[..self.pixels()].to_vec())),
+            None => Ok(None),
+        }
+    }
     /// The mean motion (pixels) the last reprojection measured; (0, 0) without one.
     pub fn last_motion(&self) -> (i32, i32) {
         self.surfaces.as_ref().map_or((0, 0), |m| m.last_motion)

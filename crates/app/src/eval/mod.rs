@@ -12,7 +12,7 @@ mod report_taa;
 mod track;
 
 use crate::GpuOpts;
-use crate::args::{SceneArgs, method_parser, scene_path};
+use crate::args::{SceneArgs, method_parser};
 use crate::output::prepare_dir;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::{Gray, luminance};
@@ -150,7 +150,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
         .iter()
         .map(|c| c.clone().fit(&bounds, &base, (args.width, args.height)))
         .collect();
-    let path = scene_path(&args.scene.scene);
+    let path = args.scene.scene_path();
     let scene_bytes =
         std::fs::read(&path).with_context(|| format!("reading scene {}", path.display()))?;
     let assets = args.scene.load_assets()?;
