@@ -8,6 +8,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 #include "generated/motion.glsl"
+#include "project.glsl"
 #include "similar.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -17,11 +18,6 @@ layout(set = 0, binding = 1, scalar) readonly buffer Prev { GBufferTexel prev[];
 layout(set = 0, binding = 2, scalar) readonly buffer History { vec4 history[]; };    // previous accum
 layout(set = 0, binding = 3, scalar) readonly buffer Estimate { vec4 estimate[]; };
 layout(set = 0, binding = 4, scalar) writeonly buffer Accum { vec4 accum[]; };
-
-float dot3(vec3 a, vec3 b) {
-    precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
-    return r;
-}
 
 // Rust's f32::round (halves away from zero), exactly: x - trunc(x) has no rounding error.
 float round_away(float x) {
@@ -43,12 +39,8 @@ void main() {
         return;
     }
     GBufferTexel g = cur[i];
-    precise vec3 d = g.position - p.camera.cam_origin;
-    precise float z = dot3(d, p.camera.cam_forward);
-    vec3 right = p.camera.cam_right, up = p.camera.cam_up;
-    precise float nx = dot3(d, right) / (dot3(right, right) * z);
-    precise float ny = -dot3(d, up) / (dot3(up, up) * z);
-    precise vec2 c = (vec2(nx, ny) + 1.0) * 0.5 * p.camera.view_size - p.camera.view_offset;
+    float z;
+    vec2 c = project_previous(p.camera, g.position, z);
     bool seen = g.material != 0u && z > 0.0 && !any(isnan(c)) && !any(isinf(c));
     precise vec2 scaled = (c - 0.5) * TAA_SNAP;
     precise vec2 s = vec2(round_away(scaled.x), round_away(scaled.y)) / TAA_SNAP;

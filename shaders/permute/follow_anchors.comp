@@ -10,6 +10,7 @@
 #extension GL_EXT_scalar_block_layout : require
 #include "generated/motion.glsl"
 #include "generated/params.glsl"
+#include "project.glsl"
 #include "similar.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -18,11 +19,6 @@ layout(set = 0, binding = 0, scalar) readonly buffer Prev { GBufferTexel prev[];
 layout(set = 0, binding = 1, scalar) readonly buffer Cur { GBufferTexel cur[]; };          // W*H
 layout(set = 0, binding = 2, scalar) readonly buffer AnchorsIn { uint anchors_in[]; };     // padded
 layout(set = 0, binding = 3, scalar) writeonly buffer AnchorsOut { uint anchors_out[]; };  // padded
-
-float dot3(vec3 a, vec3 b) {
-    precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
-    return r;
-}
 
 // One coordinate's fixed-point step: the offset of c from the centre of pixel s.
 uint step_of(float c, float s) {
@@ -37,18 +33,13 @@ void main() {
     uint keep = anchors_in[at];
     bool visible = q.x < p.width && q.y < p.height;
     GBufferTexel g = cur[min(q.y, p.height - 1u) * p.width + min(q.x, p.width - 1u)];
-    precise vec3 d = g.position - p.cam_origin;
-    precise float z = dot3(d, p.cam_forward);
-    precise float nx = dot3(d, p.cam_right) / (dot3(p.cam_right, p.cam_right) * z);
-    precise float ny = -dot3(d, p.cam_up) / (dot3(p.cam_up, p.cam_up) * z);
-    precise vec2 c = (vec2(nx, ny) + 1.0) * 0.5 * p.view_size - p.view_offset;
-    precise vec2 biased = c + REPROJECT_TIE_BIAS;
-    vec2 f = floor(biased);
-    bool inside = z > 0.0 && f.x >= 0.0 && f.y >= 0.0 && f.x < float(p.width) && f.y < float(p.height);
-    uvec2 s = inside ? uvec2(f) : uvec2(0u);
+    float z;
+    vec2 c = project_previous(p, g.position, z);
+    uvec2 s;
+    bool inside = previous_pixel(p, c, z, s);
     bool ok = visible && g.material != 0u && inside && similar(g, prev[s.y * p.width + s.x]);
     uint from = anchors_in[s.y * p.padded_width + s.x];
-    uint x = ((from & 0xffffu) + step_of(c.x, f.x)) & 0xffffu;
-    uint y = ((from >> 16u) + step_of(c.y, f.y)) & 0xffffu;
+    uint x = ((from & 0xffffu) + step_of(c.x, float(s.x))) & 0xffffu;
+    uint y = ((from >> 16u) + step_of(c.y, float(s.y))) & 0xffffu;
     anchors_out[at] = ok ? x | (y << 16u) : keep;
 }
