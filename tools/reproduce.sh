@@ -12,7 +12,8 @@
 #                                         leaves docs/ untouched
 #
 # The motion run's headline table (per frame / accumulated along the motion) also replaces
-# README.md's results table. Eval outputs go to out/results/NAME/ (report.md, report.json, PNGs). Nothing is left
+# README.md's results table, and the best preset per configuration its "which method to
+# pick". Eval outputs go to out/results/NAME/ (report.md, report.json, PNGs). Nothing is left
 # half-written: each run goes to a staging directory that replaces the old one only when it
 # succeeds, and docs files are written to a temporary file and then renamed.
 # Needs only bash, coreutils and awk (besides what scripts/setup.sh installs).
@@ -83,6 +84,12 @@ for m in begin end; do
       exit 1
     fi
   done
+  for n in motion pick; do
+    if ! grep -qx "<!-- reproduce:$n $m -->" README.md; then
+      echo "reproduce: README.md lacks the marker <!-- reproduce:$n $m -->" >&2
+      exit 1
+    fi
+  done
 done
 
 if ((!reuse)); then
@@ -147,6 +154,48 @@ headline() { # report.md
   awk '/^## Per frame \/ accumulated along the motion/ { on = 1; next } /^## / { on = 0 } on && /^[|]/' "$1"
 }
 
+# From a headline table (stdin): per configuration and for the geometric mean over them, the
+# preset with the lowest per-frame and the lowest accumulated ratio (spelled-out experiment
+# forms and `white` left out), and the default's own figures.
+picks() {
+  awk -v default_method=sort-cycle '
+    BEGIN { FS = " *[|] *" }
+    /^[|] method [|]/ { for (i = 3; i < NF; i++) cfg[i] = $i; nc = NF - 1; next }
+    /^[|]---/ || /^[|] [*]/ { next }
+    /^[|] / {
+      m = $2
+      if (m == "white" || m ~ /:/) next
+      lf = 0; la = 0
+      for (i = 3; i <= nc; i++) {
+        split($i, v, " / ")
+        f[m, i] = v[1]; a[m, i] = v[2]
+        lf += log(v[1]); la += log(v[2])
+      }
+      f[m, "mean"] = sprintf("%.3f", exp(lf / (nc - 2))); a[m, "mean"] = sprintf("%.3f", exp(la / (nc - 2)))
+      ms[++nm] = m
+    }
+    END {
+      cfg["mean"] = "geometric mean"
+      for (i = 3; i <= nc; i++) cols[++ncol] = i
+      cols[++ncol] = "mean"
+      line = "| best |"; rule = "|---|"
+      for (k = 1; k <= ncol; k++) { line = line " " cfg[cols[k]] " |"; rule = rule "---|" }
+      print line; print rule
+      lf = "| per frame |"; la = "| accumulated |"; ld = "| `" default_method "` (default) |"
+      for (k = 1; k <= ncol; k++) {
+        c = cols[k]; bf = ""; ba = ""
+        for (j = 1; j <= nm; j++) {
+          m = ms[j]
+          if (bf == "" || f[m, c] + 0 < f[bf, c] + 0) bf = m
+          if (ba == "" || a[m, c] + 0 < a[ba, c] + 0) ba = m
+        }
+        lf = lf " `" bf "` " f[bf, c] " |"; la = la " `" ba "` " a[ba, c] " |"
+        ld = ld " " f[default_method, c] " / " a[default_method, c] " |"
+      }
+      print lf; print la; print ld
+    }'
+}
+
 # Replaces the text between the markers of NAME in FILE by the contents of BODY, in place
 # (through a temporary file).
 splice() { # name file body
@@ -204,6 +253,8 @@ for r in "${RUNS[@]}"; do
   if [ "$name" = motion ] && ((!quick)); then
     { echo; headline "$out/report.md"; echo; } > "$head_body"
     splice "$name" README.md "$head_body"
+    { echo; headline "$out/report.md" | picks; echo; } > "$head_body"
+    splice pick README.md "$head_body"
   fi
 
   for f in "${FIGURES[@]}"; do
