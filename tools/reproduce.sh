@@ -22,8 +22,8 @@ cd "$(dirname "$0")/.."
 
 # name | arguments of `blueshift eval` besides the common ones below
 RUNS=(
-  "motion|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera static,strafe:2.5 --bounces 1,8 --sequences 1"
-  "motion-textured|--scene textured --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera strafe:2.5 --bounces 1,8 --sequences 1"
+  "motion|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:grouping=surfaces --camera static,strafe:2.5 --bounces 1,8 --sequences 8"
+  "motion-textured|--scene textured --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera strafe:2.5 --bounces 1,8 --sequences 8"
   "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8 --sequences 4"
   "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1 --bounces 1,8 --sequences 4"
 )
@@ -103,28 +103,31 @@ tmpfiles=()
 cleanup() { ((${#tmpfiles[@]})) && rm -rf "${tmpfiles[@]}"; return 0; }
 trap cleanup EXIT
 
-# Pivot tables of one report.md: for each column named in COLS, a table with one row per
-# method and one column per configuration.
+# Pivot tables of one report.md: for each column named in COLS (the first table of each
+# configuration, or with "2:" its second, the accumulation along the motion), a table with one
+# row per method and one column per configuration.
 tables() { # report.md
   awk '
     BEGIN {
       FS = " *[|] *"
-      ncol = split("P1 emitter-free|EMA P1 emitter-free|FLIP emitter-free|RMSE", cols, "|")
-      title["P1 emitter-free"] = "P1 ratio to `white` per frame on emitter-free pixels (frames in the metrics window; ± standard error over sequences)"
-      title["EMA P1 emitter-free"] = "EMA P1 ratio to `white` on emitter-free pixels: the same metric on the exponential moving average of the frames (alpha 0.1)"
-      title["FLIP emitter-free"] = "FLIP of the accumulated image (running mean since the camera last moved) at the last frame, emitter-free pixels, absolute: lower is better"
-      title["RMSE"] = "RMSE ratio to `white`, all pixels (the permutation only moves error: should stay within 3%)"
+      ncol = split("1:P1 emitter-free|2:TAA P1|2:TAA FLIP|2:P8|2:TAA P8|1:RMSE", cols, "|")
+      title["1:P1 emitter-free"] = "P1 ratio to `white` per frame on emitter-free pixels (frames in the metrics window; ± standard error over sequences)"
+      title["2:TAA P1"] = "TAA P1 ratio to `white` on emitter-free pixels: the accumulation that follows the motion (alpha 0.1; the EMA for a still camera)"
+      title["2:TAA FLIP"] = "FLIP of the TAA image at the last frame, emitter-free pixels, absolute: lower is better"
+      title["2:P8"] = "P8 ratio to `white` per frame (sigma 8 px, a denoiser'"'"'s scale; pixels more than 24 px from a visible light)"
+      title["2:TAA P8"] = "TAA P8 ratio to `white`: the same on the TAA image"
+      title["1:RMSE"] = "RMSE ratio to `white`, all pixels (the permutation only moves error: should stay within 3%)"
     }
     NR == 3 { info = $0; sub(/; commit [^;]*;/, ";", info) }
     /^## Per frame/ { skip = 1; next }
-    /^## / { skip = 0; cfg = substr($0, 4); ncfg++; cfgs[ncfg] = cfg; next }
+    /^## / { skip = 0; cfg = substr($0, 4); ncfg++; cfgs[ncfg] = cfg; tbl = 0; next }
     skip { next }
-    /^[|] method [|]/ { for (i = 2; i < NF; i++) at[$i] = i; next }
+    /^[|] method [|]/ { tbl++; delete at; for (i = 2; i < NF; i++) at[tbl ":" $i] = i; next }
     /^[|]---/ { next }
     /^[|] / && ncfg > 0 {
       m = $2
       if (!(m in seen)) { seen[m] = 1; nm++; ms[nm] = m }
-      for (c = 1; c <= ncol; c++) v[cols[c], m, cfg] = $(at[cols[c]])
+      for (c = 1; c <= ncol; c++) if (cols[c] in at) v[cols[c], m, cfg] = $(at[cols[c]])
     }
     END {
       if (nm == 0) { print "reproduce: no tables in the report" > "/dev/stderr"; exit 1 }

@@ -6,6 +6,7 @@ use blueshift_layout::params::{
     TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
 use blueshift_permute::CYCLE_FRAMES;
+use blueshift_sampling::Sampler;
 
 impl Renderer {
     /// The path tracer's push constants for the next frame (camera, view window, method).
@@ -19,14 +20,19 @@ impl Renderer {
         // The mask methods drive only the first MASK_DIMS dimensions: the rest are fresh
         // white noise every frame, as `white`'s (unsalted, a pixel would repeat its deeper
         // bounces' directions every frame, and its average would never converge).
+        // Behind `mask-rot`'s rotating mask a progressive sampler (Sobol) runs on instead,
+        // index advancing per frame, keyed by the pixel (anchored: by the anchor's cell), so a
+        // pixel's (a surface point's) deeper dimensions converge like its mask dimensions.
+        let sequence_rest =
+            m.mask_method() == Method::MaskRot && c.effective_sampler() == Sampler::Sobol;
         let white_rest = matches!(
             m.mask_method(),
             Method::White | Method::MaskR2 | Method::MaskRot | Method::Stbn | Method::Fast
-        );
+        ) && !sequence_rest;
         if white_rest || c.frame_salt {
             flags |= TRACE_FLAG_SALT_FRAME;
         }
-        if m.advances_index() {
+        if m.advances_index() || sequence_rest {
             flags |= TRACE_FLAG_ADVANCE_INDEX;
         }
         if c.no_jitter {
