@@ -4,7 +4,8 @@
 # curated figures in docs/figures/.
 #
 #   bash tools/reproduce.sh               all runs (about 10-25 minutes each on 2 CPU cores)
-#   bash tools/reproduce.sh --only NAME   one run: motion, motion-textured, cornell or textured
+#   bash tools/reproduce.sh --only NAME   one run: motion, motion-textured, still-256, cornell or
+#                                         textured
 #   bash tools/reproduce.sh --reuse       no eval: rewrite the tables from the reports already
 #                                         in out/results/NAME/ (e.g. after editing the docs)
 #   bash tools/reproduce.sh --quick       smoke run: 12 frames, one sequence; writes
@@ -22,10 +23,11 @@ cd "$(dirname "$0")/.."
 
 # name | arguments of `blueshift eval` besides the common ones below
 RUNS=(
-  "motion|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:grouping=surfaces --camera static,strafe:2.5 --bounces 1,8 --sequences 8"
-  "motion-textured|--scene textured --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera strafe:2.5 --bounces 1,8 --sequences 8"
-  "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8 --sequences 4"
-  "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1 --bounces 1,8 --sequences 4"
+  "motion|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:grouping=surfaces --camera static,strafe:2.5 --bounces 1,8 --sequences 8 --width 128 --height 128"
+  "motion-textured|--scene textured --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera strafe:2.5 --bounces 1,8 --sequences 8 --width 128 --height 128"
+  "still-256|--methods white,sobol,stbn,mask-r2,mask-rot,blocknet,sort-cycle --camera static --bounces 1,8 --sequences 4 --width 256 --height 256"
+  "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8 --sequences 4 --width 128 --height 128"
+  "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1 --bounces 1,8 --sequences 4 --width 128 --height 128"
 )
 # name | file in the run's output | name under docs/figures/
 FIGURES=(
@@ -68,11 +70,11 @@ if [ -n "$only" ]; then
 fi
 
 if ((quick)); then
-  common="--spp 1 --frames 12 --width 128 --height 128"
+  common="--spp 1 --frames 12"
   results_md=out/results/results.md
   figures_dir=out/results/figures
 else
-  common="--spp 1 --frames 64 --width 128 --height 128"
+  common="--spp 1 --frames 64"
   results_md=docs/results.md
   figures_dir=docs/figures
 fi

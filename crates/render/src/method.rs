@@ -235,6 +235,9 @@ impl Method {
             Method::Sobol => Sampler::Sobol,
             Method::Hbo19 => Sampler::Hbo19,
             Method::BlockNet => Sampler::BlockNet,
+            // Behind the rotating mask: its deeper dimensions converge along the pixel (or
+            // the anchor) too.
+            Method::MaskRot | Method::MaskRotFollow => Sampler::Sobol,
             m if m.cycles_points() => Sampler::BlockNet,
             _ => Sampler::White,
         }

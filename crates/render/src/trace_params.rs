@@ -1,5 +1,5 @@
 //! The trace pass's push constants per method, and the mask offsets of `mask-r2`.
-use crate::{Method, RenderError, Renderer};
+use crate::{Method, RenderConfig, RenderError, Renderer};
 use blueshift_layout::params::{
     MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_ROTATE, MASK_MODE_SPATIOTEMPORAL,
     TRACE_FLAG_ADVANCE_INDEX, TRACE_FLAG_DEMODULATE, TRACE_FLAG_MASK_ANCHORED,
@@ -16,34 +16,7 @@ impl Renderer {
         let basis = self.camera.basis(vw as f32 / vh as f32);
         let m = c.method;
         let n = self.assets.n;
-        let mut flags = 0;
-        // The mask methods drive only the first MASK_DIMS dimensions: the rest are fresh
-        // white noise every frame, as `white`'s (unsalted, a pixel would repeat its deeper
-        // bounces' directions every frame, and its average would never converge).
-        // Behind `mask-rot`'s rotating mask a progressive sampler (Sobol) runs on instead,
-        // index advancing per frame, keyed by the pixel (anchored: by the anchor's cell), so a
-        // pixel's (a surface point's) deeper dimensions converge like its mask dimensions.
-        let sequence_rest =
-            m.mask_method() == Method::MaskRot && c.effective_sampler() == Sampler::Sobol;
-        let white_rest = matches!(
-            m.mask_method(),
-            Method::White | Method::MaskR2 | Method::MaskRot | Method::Stbn | Method::Fast
-        ) && !sequence_rest;
-        if white_rest || c.frame_salt {
-            flags |= TRACE_FLAG_SALT_FRAME;
-        }
-        if m.advances_index() || sequence_rest {
-            flags |= TRACE_FLAG_ADVANCE_INDEX;
-        }
-        if c.no_jitter {
-            flags |= TRACE_FLAG_NO_JITTER;
-        }
-        if m.demodulates() {
-            flags |= TRACE_FLAG_DEMODULATE;
-        }
-        if m.anchors_mask() {
-            flags |= TRACE_FLAG_MASK_ANCHORED;
-        }
+        let flags = trace_flags(c);
         let (mask_mode, mask_size, mask_frames, off) = match m.mask_method() {
             Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),
             Method::MaskRot => (MASK_MODE_ROTATE, n, 1, (0, 0)),
@@ -86,6 +59,40 @@ impl Renderer {
     }
 }
 
+/// The trace pass's method flags for configuration `c`.
+fn trace_flags(c: &RenderConfig) -> u32 {
+    let m = c.method;
+    let mut flags = 0;
+    // The mask methods drive only the first MASK_DIMS dimensions: the rest are fresh white
+    // noise every frame, as `white`'s (unsalted, a pixel would repeat its deeper bounces'
+    // directions every frame, and its average would never converge). Behind `mask-rot`'s
+    // rotating mask a progressive sampler (Sobol, its default) runs on instead, index advancing
+    // per frame, keyed by the pixel (anchored: by the anchor's cell), so a pixel's (a surface
+    // point's) deeper dimensions converge like its mask dimensions.
+    let sequence_rest =
+        m.mask_method() == Method::MaskRot && c.effective_sampler() == Sampler::Sobol;
+    let white_rest = matches!(
+        m.mask_method(),
+        Method::White | Method::MaskR2 | Method::MaskRot | Method::Stbn | Method::Fast
+    ) && !sequence_rest;
+    if white_rest || c.frame_salt {
+        flags |= TRACE_FLAG_SALT_FRAME;
+    }
+    if m.advances_index() || sequence_rest {
+        flags |= TRACE_FLAG_ADVANCE_INDEX;
+    }
+    if c.no_jitter {
+        flags |= TRACE_FLAG_NO_JITTER;
+    }
+    if m.demodulates() {
+        flags |= TRACE_FLAG_DEMODULATE;
+    }
+    if m.anchors_mask() {
+        flags |= TRACE_FLAG_MASK_ANCHORED;
+    }
+    flags
+}
+
 pub(crate) fn no_fast() -> RenderError {
     RenderError::Asset(blueshift_assets::AssetError::Missing(format!(
         "no FAST mask ({}; `blueshift-tools fast` makes it)",
@@ -101,4 +108,38 @@ pub fn r2_offset(frame: u64, n: u32) -> (u32, u32) {
     let fx = (0.5 + t / g).fract();
     let fy = (0.5 + t / (g * g)).fract();
     ((fx * n as f64) as u32 % n, (fy * n as f64) as u32 % n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every method whose samples are not a progressive sequence is salted per frame (else its
+    /// deeper dimensions would repeat every frame); `mask-rot`'s Sobol runs on instead, and a
+    /// sampler given by hand puts the rotating mask back on white noise.
+    #[test]
+    fn the_rotating_masks_run_a_sequence_behind_them() {
+        let flags = |method: Method, sampler: Option<Sampler>| {
+            let c = RenderConfig {
+                method,
+                sampler,
+                ..RenderConfig::new(8, 8)
+            };
+            let f = trace_flags(&c);
+            (
+                f & TRACE_FLAG_SALT_FRAME != 0,
+                f & TRACE_FLAG_ADVANCE_INDEX != 0,
+            )
+        };
+        for m in [Method::MaskRot, Method::MaskRotFollow] {
+            assert_eq!(m.default_sampler(), Sampler::Sobol, "{m}");
+            assert_eq!(flags(m, None), (false, true), "{m}");
+            assert_eq!(flags(m, Some(Sampler::White)), (true, false), "{m}");
+        }
+        for m in [Method::White, Method::MaskR2, Method::Stbn, Method::Fast] {
+            assert_eq!(flags(m, None), (true, false), "{m}");
+            assert_eq!(flags(m, Some(Sampler::Sobol)), (true, false), "{m}");
+        }
+        assert_eq!(flags(Method::Sobol, None), (false, true));
+    }
 }
