@@ -145,3 +145,36 @@ fn a_still_camera_renders_the_screen_fixed_mask() {
         );
     }
 }
+
+/// The overhead `bench` and `eval` report is the sum of the passes in PERMUTE_PASSES: every
+/// pass any preset records, still or moving, other than the path tracer and the image passes
+/// every method runs, must be on that list, or its cost goes unreported.
+#[test]
+fn every_pass_a_method_adds_counts_in_its_overhead() {
+    let gpu = Gpu::new();
+    let (scene, assets) = cornell();
+    let common = ["trace", "accumulate", "tonemap"];
+    for (name, m) in Method::PRESETS {
+        if m == Method::Fast && assets.fast.is_empty() {
+            continue;
+        }
+        let cfg = RenderConfig {
+            bounces: 1,
+            method: m,
+            ..RenderConfig::new(16, 16)
+        };
+        let mut r = Renderer::new(gpu.dev(), &scene, &assets, cfg).unwrap();
+        let mut cam = scene.camera_or_default();
+        for _ in 0..3 {
+            for p in r.render_frame().unwrap().passes {
+                let n = p.name.as_str();
+                assert!(
+                    common.contains(&n) || blueshift_render::PERMUTE_PASSES.contains(&n),
+                    "{name}: pass '{n}' is not counted"
+                );
+            }
+            cam.position.x += 0.05;
+            r.set_camera(cam);
+        }
+    }
+}

@@ -65,12 +65,13 @@ use plan::FramePlan;
 use seeds::{key_words, seeds_of};
 use slots::FrameSlot;
 
-/// Timing labels of every pass a permutation method adds to the path tracer, in frame order:
-/// their sum against `trace` is the method's overhead.
-pub const PERMUTE_PASSES: [&str; 6] = [
+/// Timing labels of every pass a permutation or anchored-mask method adds to the path tracer,
+/// in frame order: their sum against `trace` is the method's overhead.
+pub const PERMUTE_PASSES: [&str; 7] = [
     "gbuffer",
     "reproject_motion",
     "reproject_seeds",
+    "follow_anchors",
     "history_key",
     "classify_pixels",
     "sort_seeds",
