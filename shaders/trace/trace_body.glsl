@@ -155,13 +155,13 @@ void main() {
     // takes a key made from it. With the index advancing (a progressive sampler behind the
     // mask) the key is the anchor's cell alone, so a surface point keeps its sequence while
     // it moves; otherwise it is hashed with the pixel (two pixels may carry one anchor).
-    bool anchored = (P.flags & TRACE_FLAG_MASK_ANCHORED) != 0u;
-    uvec2 cell = uvec2(seed & 0xffffu, seed >> 16u) >> ANCHOR_FRAC_BITS;
-    g_mask_px = anchored ? cell : px;
-    bool advancing = (P.flags & TRACE_FLAG_ADVANCE_INDEX) != 0u;
-    uint anchor_key = advancing ? hash3(cell.x, cell.y, 0xa7c5u)
-                                : hash3(seed, px.y * P.stride + px.x, 0xa7c4u);
-    seed = anchored ? anchor_key : seed;
+    g_mask_px = px;
+    if ((P.flags & TRACE_FLAG_MASK_ANCHORED) != 0u) {
+        g_mask_px = uvec2(seed & 0xffffu, seed >> 16u) >> ANCHOR_FRAC_BITS;
+        seed = (P.flags & TRACE_FLAG_ADVANCE_INDEX) != 0u
+                   ? hash3(g_mask_px.x, g_mask_px.y, 0xa7c5u)
+                   : hash3(seed, px.y * P.stride + px.x, 0xa7c4u);
+    }
     seed = (P.flags & TRACE_FLAG_SALT_FRAME) != 0u ? hash3(seed, P.frame, 0x5a17u) : seed;
     uint s0 = P.sample_index, count = P.sample_count;
     vec3 l = trace_paths(px, seed, s0, count) / float(count);
