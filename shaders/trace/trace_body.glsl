@@ -155,13 +155,16 @@ void main() {
     // takes a key made from it. With the index advancing (a progressive sampler behind the
     // mask) the key is the anchor's cell alone, so a surface point keeps its sequence while
     // it moves; otherwise it is hashed with the pixel (two pixels may carry one anchor).
+    // (Anchors exist only with a mask mode, so variants without one compile this out.)
     g_mask_px = px;
+#if TRACE_MASK
     if ((P.flags & TRACE_FLAG_MASK_ANCHORED) != 0u) {
         g_mask_px = uvec2(seed & 0xffffu, seed >> 16u) >> ANCHOR_FRAC_BITS;
         seed = (P.flags & TRACE_FLAG_ADVANCE_INDEX) != 0u
                    ? hash3(g_mask_px.x, g_mask_px.y, 0xa7c5u)
                    : hash3(seed, px.y * P.stride + px.x, 0xa7c4u);
     }
+#endif
     seed = (P.flags & TRACE_FLAG_SALT_FRAME) != 0u ? hash3(seed, P.frame, 0x5a17u) : seed;
     uint s0 = P.sample_index, count = P.sample_count;
     vec3 l = trace_paths(px, seed, s0, count) / float(count);

@@ -407,6 +407,17 @@ fn other_bad_arguments_are_errors_not_panics() {
     c.expect_error(&o, &["/nonexistent.glb: file not found"]);
     let o = c.run(
         &[
+            "eval",
+            "--first-sequence",
+            "4000000000",
+            "--out",
+            out.to_str().expect("utf-8"),
+        ],
+        &[],
+    );
+    c.expect_error(&o, &["--first-sequence 4000000000 is above"]);
+    let o = c.run(
+        &[
             "soak",
             "--method",
             "white",

@@ -17,17 +17,12 @@ impl Renderer {
         let m = c.method;
         let n = self.assets.n;
         let flags = trace_flags(c);
-        let (mask_mode, mask_size, mask_frames, off) = match m.mask_method() {
-            Method::MaskR2 => (MASK_MODE_2D, n, 1, r2_offset(self.frame, n)),
-            Method::MaskRot => (MASK_MODE_ROTATE, n, 1, (0, 0)),
-            Method::Stbn | Method::Fast => (
-                MASK_MODE_SPATIOTEMPORAL,
-                self.assets.stbn_n,
-                self.assets.stbn_frames,
-                (0, 0),
-            ),
-            _ => (MASK_MODE_NONE, n, 1, (0, 0)),
+        let (mask_size, mask_frames, off) = match m.mask_method() {
+            Method::MaskR2 => (n, 1, r2_offset(self.frame, n)),
+            Method::Stbn | Method::Fast => (self.assets.stbn_n, self.assets.stbn_frames, (0, 0)),
+            _ => (n, 1, (0, 0)),
         };
+        let mask_mode = mask_mode_of(c);
         TraceParams {
             cam_origin: basis.position,
             cam_forward: basis.forward,
@@ -56,6 +51,16 @@ impl Renderer {
             view_offset: glam::Vec2::new(self.view_offset.0, self.view_offset.1),
             view_size: glam::Vec2::new(vw as f32, vh as f32),
         }
+    }
+}
+
+/// The trace pass's mask mode for configuration `c`.
+fn mask_mode_of(c: &RenderConfig) -> u32 {
+    match c.method.mask_method() {
+        Method::MaskR2 => MASK_MODE_2D,
+        Method::MaskRot => MASK_MODE_ROTATE,
+        Method::Stbn | Method::Fast => MASK_MODE_SPATIOTEMPORAL,
+        _ => MASK_MODE_NONE,
     }
 }
 
@@ -141,5 +146,20 @@ mod tests {
             assert_eq!(flags(m, Some(Sampler::Sobol)), (true, false), "{m}");
         }
         assert_eq!(flags(Method::Sobol, None), (false, true));
+    }
+
+    /// The trace pass reads anchors only in its mask variants (`#if TRACE_MASK`), so every
+    /// anchored method must run one.
+    #[test]
+    fn anchored_methods_have_a_mask_mode() {
+        for (name, m) in Method::PRESETS {
+            if m.anchors_mask() {
+                let c = RenderConfig {
+                    method: m,
+                    ..RenderConfig::new(8, 8)
+                };
+                assert_ne!(mask_mode_of(&c), MASK_MODE_NONE, "{name}");
+            }
+        }
     }
 }

@@ -3,6 +3,9 @@
 
 include!(concat!(env!("OUT_DIR"), "/shaders.rs"));
 
+mod canonical;
+pub use canonical::canonical_words;
+
 /// The SPIR-V words of shader `name`, or `None` if no such shader exists.
 pub fn spirv(name: &str) -> Option<Vec<u32>> {
     SHADERS

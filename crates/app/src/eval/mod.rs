@@ -26,6 +26,9 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
+/// The largest `--first-sequence` (any u32 would do; larger is a typo).
+const MAX_FIRST_SEQUENCE: u32 = 1 << 20;
+
 /// `eval`'s flags: each item of a list is parsed as the single value of `render`'s flag.
 #[derive(clap::Args, Debug)]
 pub struct EvalArgs {
@@ -64,6 +67,10 @@ pub struct EvalArgs {
     /// Independent sequences (initial seed maps) per configuration; metrics are averaged.
     #[arg(long, default_value_t = 1)]
     pub sequences: u32,
+    /// The first sequence's number: tune a method's constants on sequences the reported
+    /// tables do not use (e.g. 100 and up; the tables use 0..).
+    #[arg(long, default_value_t = 0)]
+    pub first_sequence: u32,
     /// Reference cache (default: ~/.cache/blueshift/references).
     #[arg(long)]
     pub cache: Option<PathBuf>,
@@ -143,6 +150,12 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     }
     if !(1..=64).contains(&args.sequences) {
         bail!("--sequences {} is outside 1..=64", args.sequences);
+    }
+    if args.first_sequence > MAX_FIRST_SEQUENCE {
+        bail!(
+            "--first-sequence {} is above {MAX_FIRST_SEQUENCE}",
+            args.first_sequence
+        );
     }
     let scene = args.scene.load_scene()?;
     let (base, bounds) = (scene.camera_or_default(), scene.bounds());
@@ -284,7 +297,8 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
     let (mut last_frame, mut last_error) = (Vec::new(), None);
     let (mut flip, mut flip_clean, mut clean_fraction) = (0.0, 0.0, 0.0);
     let (mut taa_flip, mut taa_flip_clean) = (0.0, 0.0);
-    for seq in 0..args.sequences {
+    for k in 0..args.sequences {
+        let seq = args.first_sequence + k;
         let (view, base_offset) = config.camera.view_window(args.frames, w, h);
         let cfg = RenderConfig {
             spp: config.spp,
@@ -316,7 +330,7 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
                 times.entry(p.name).or_default().push(p.ms);
             }
             let est = r.read_estimate()?;
-            if args.save_frames && seq == 0 {
+            if args.save_frames && k == 0 {
                 save_frame(args, config, method, t, &est, &rf.px)?;
             }
             // Luminance from rgb: the estimate's fourth channel is the sorting key, which
@@ -360,7 +374,7 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
         taa_p1_per_sequence.push(m.taa.p1);
         merged = Some(match merged {
             None => m,
-            Some(prev) => metrics::average(prev, m, seq as f64),
+            Some(prev) => metrics::average(prev, m, k as f64),
         });
     }
     // A pass a frame skipped (a still view's G-buffer) counts 0 ms in that frame.

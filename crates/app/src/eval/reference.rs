@@ -1,6 +1,6 @@
 //! Reference images: Owen-scrambled Sobol at >= 1024 spp, cached on disk under a key of scene,
 //! camera path, resolution, bounces, spp, primary-ray placement (jittered or pixel centres) and
-//! the path tracer's SPIR-V (the renderer version).
+//! the code of the path tracer variants that render references (the renderer version).
 use crate::output::write_atomic;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::luminance;
@@ -10,7 +10,9 @@ use blueshift_sampling::Sampler;
 use blueshift_scene::Scene;
 use indicatif::{ProgressBar, ProgressStyle};
 use sha2::{Digest, Sha256};
+use blueshift_layout::variants::TraceVariant;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 /// Samples per pixel per reference frame; references accumulate `spp / REF_CHUNK` frames.
 const REF_CHUNK: u32 = 64;
@@ -78,6 +80,32 @@ pub struct RefJob<'a> {
     pub no_jitter: bool,
 }
 
+/// A hash of the canonical SPIR-V ([`blueshift_shaders::canonical_words`]) of every variant a
+/// reference can be rendered with (Sobol, no mask). Only code those variants run changes it:
+/// another sampler's or a mask mode's code, comments and line numbers do not, so work on the
+/// methods keeps the (slow) references.
+fn path_tracer_version() -> &'static [u8] {
+    static VERSION: OnceLock<Vec<u8>> = OnceLock::new();
+    VERSION.get_or_init(|| {
+        let mut h = Sha256::new();
+        for bits in 0..8u32 {
+            let v = TraceVariant {
+                sampler: Sampler::Sobol,
+                mask: false,
+                textures: bits & 1 != 0,
+                lambert: bits & 2 != 0,
+                lights: bits & 4 != 0,
+                loop_stats: false,
+            };
+            let words = blueshift_shaders::spirv(&v.shader()).unwrap_or_default();
+            // A module that does not parse (never, for our own) still keys by its raw words.
+            let canonical = blueshift_shaders::canonical_words(&words).unwrap_or(words);
+            h.update(bytemuck::cast_slice::<u32, u8>(&canonical));
+        }
+        h.finalize().to_vec()
+    })
+}
+
 fn key(job: &RefJob, what: &str) -> String {
     let mut h = Sha256::new();
     h.update(job.scene_bytes);
@@ -91,11 +119,7 @@ fn key(job: &RefJob, what: &str) -> String {
         h.update(format!("{}x{}|{}", m.width, m.height, m.rotation));
         h.update(bytemuck::cast_slice::<glam::Vec3, u8>(&m.texels));
     }
-    h.update(
-        blueshift_shaders::spirv("trace/trace")
-            .map(|w| bytemuck::cast_slice::<u32, u8>(&w).to_vec())
-            .unwrap_or_default(),
-    );
+    h.update(path_tracer_version());
     // A jittered reference is the pixel's area average, a centred one its centre value: they
     // differ at every edge, so they must never share a cache entry.
     let rays = if job.no_jitter { "centres" } else { "jitter" };

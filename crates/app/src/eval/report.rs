@@ -94,7 +94,8 @@ pub fn write(
             "scene": a.scene.scene, "width": a.width, "height": a.height, "frames": a.frames,
             "window": [a.frames / 2, a.frames - 1], "block": a.scene.block,
             "sampler": a.scene.sampler.map(|s| s.name()),
-            "reference_spp": a.reference_spp, "sequences": a.sequences, "jitter": !a.no_jitter,
+            "reference_spp": a.reference_spp, "sequences": a.sequences,
+            "first_sequence": a.first_sequence, "jitter": !a.no_jitter,
             "ema_alpha": super::metrics::EMA_ALPHA, "spectrum_tile": super::metrics::TILE,
             "edge_threshold": masks::EDGE_THRESHOLD, "display_white": masks::DISPLAY_WHITE,
             "emitter_dilation_px": masks::EMITTER_DILATION,
@@ -129,7 +130,7 @@ fn markdown(
     writeln!(md, "# Blueshift evaluation: {}\n", a.scene.scene)?;
     writeln!(
         md,
-        "{}x{}, {} frames (metrics over frames {}-{}), block {} (sort-grid-*, sort-cycle: {}), reference {} spp, {} sequence(s), {}; \
+        "{}x{}, {} frames (metrics over frames {}-{}), block {} (sort-grid-*, sort-cycle: {}), reference {} spp, {} sequence(s){}, {}; \
          device {} ({} {}); commit {}; {:.0} s.\n",
         a.width,
         a.height,
@@ -140,6 +141,11 @@ fn markdown(
         blueshift_render::GRID_BLOCK,
         a.reference_spp,
         a.sequences,
+        if a.first_sequence == 0 {
+            String::new()
+        } else {
+            format!(" from number {}", a.first_sequence)
+        },
         if a.no_jitter {
             "primary rays through pixel centres (--no-jitter)"
         } else {
