@@ -5,12 +5,12 @@ use crate::output::write_atomic;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::luminance;
 use blueshift_device::Device;
+use blueshift_layout::variants::TraceVariant;
 use blueshift_render::{CameraPath, Method, MethodAssets, RenderConfig, Renderer};
 use blueshift_sampling::Sampler;
 use blueshift_scene::Scene;
 use indicatif::{ProgressBar, ProgressStyle};
 use sha2::{Digest, Sha256};
-use blueshift_layout::variants::TraceVariant;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
