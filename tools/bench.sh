@@ -82,16 +82,11 @@ cpu="$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)"
   echo
 } >> "$table"
 
+source tools/splice.sh
+# Both files are checked before either is written.
 for f in docs/results.md README.md; do
   grep -qx "<!-- bench:passes begin -->" "$f" && grep -qx "<!-- bench:passes end -->" "$f" ||
     { echo "bench.sh: $f lacks the bench:passes markers" >&2; exit 1; }
-  tmp="$(mktemp "$f.XXXXXX.tmp")"
-  tmpfiles+=("$tmp")
-  chmod --reference="$f" "$tmp"
-  awk -v body="$table" '
-    $0 == "<!-- bench:passes begin -->" { print; while ((getline line < body) > 0) print line; skip = 1; next }
-    $0 == "<!-- bench:passes end -->" { skip = 0 }
-    !skip { print }' "$f" > "$tmp"
-  mv "$tmp" "$f"
 done
+for f in docs/results.md README.md; do splice bench:passes "$f" "$table"; done
 echo "bench.sh: wrote the pass table into docs/results.md and README.md" >&2

@@ -201,19 +201,7 @@ picks() {
     }'
 }
 
-# Replaces the text between the markers of NAME in FILE by the contents of BODY, in place
-# (through a temporary file).
-splice() { # name file body
-  local tmp
-  tmp="$(mktemp "$2.XXXXXX.tmp")"
-  tmpfiles+=("$tmp")
-  chmod --reference="$2" "$tmp"
-  awk -v begin="<!-- reproduce:$1 begin -->" -v end="<!-- reproduce:$1 end -->" -v body="$3" '
-    $0 == begin { print; while ((getline line < body) > 0) print line; skip = 1; next }
-    $0 == end { skip = 0 }
-    !skip { print }' "$2" > "$tmp"
-  mv "$tmp" "$2"
-}
+source tools/splice.sh
 
 # The new results.md is assembled in a temporary file beside its destination.
 work="$(mktemp "$results_md.XXXXXX.tmp")"
@@ -254,12 +242,12 @@ for r in "${RUNS[@]}"; do
     tables "$out/report.md"
     echo
   } > "$body"
-  splice "$name" "$work" "$body"
+  splice "reproduce:$name" "$work" "$body"
   if [ "$name" = motion ] && ((!quick)); then
     { echo; headline "$out/report.md"; echo; } > "$head_body"
-    splice "$name" README.md "$head_body"
+    splice "reproduce:$name" README.md "$head_body"
     { echo; headline "$out/report.md" | picks; echo; } > "$head_body"
-    splice pick README.md "$head_body"
+    splice reproduce:pick README.md "$head_body"
   fi
 
   for f in "${FIGURES[@]}"; do

@@ -46,7 +46,7 @@ pub(crate) struct Surfaces {
     /// the view moved (`grouping=still-surfaces`).
     class_view: Option<ClassInputs>,
     /// Whether `classes` holds one class per block (all zero), as a moving view leaves it.
-    classes_blocks: bool,
+    pub(crate) classes_blocks: bool,
     /// What the last reprojection was computed from, and once checked, whether its source
     /// map sends every pixel to itself or nowhere (a still view).
     reprojection_inputs: Option<(ReprojectionInputs, Option<bool>)>,

@@ -5,6 +5,7 @@ use crate::plan::{MaskSource, Pass, SortGrid, SortPlan};
 use crate::{Accumulation, RenderError, Renderer, Result, trace_params};
 use blueshift_device::{Buffer, Device};
 use blueshift_layout::params::{ImageParams, TraceParams};
+use blueshift_layout::variants::SortVariant;
 use blueshift_permute::{CycleInput, SortInput, SortParams, grid_offset, mask_offset, pair_phase};
 
 impl Renderer {
@@ -93,8 +94,16 @@ impl Renderer {
     }
 
     fn sort_pass(&mut self, s: &SortPlan, sp: &SortParams) -> Result<()> {
-        let v = s.variant;
         let surfaces = self.surfaces.as_ref();
+        // One class per block (a moving view under `grouping=still-surfaces`) ranks exactly as
+        // no classes: the variant without them skips a load per pixel and the class bits.
+        let v = match surfaces {
+            Some(st) if s.variant.classes && st.classes_blocks => SortVariant {
+                classes: false,
+                ..s.variant
+            },
+            _ => s.variant,
+        };
         let missing = |what: &str| RenderError::Invalid(format!("{} without {what}", v.shader()));
         let cycle = match (v.cycle, &self.cycle) {
             (false, _) => None,
