@@ -25,6 +25,8 @@ cd "$(dirname "$0")/.."
 RUNS=(
   "motion|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:grouping=surfaces --camera static,strafe:2.5 --bounces 1,8 --sequences 8 --width 128 --height 128"
   "motion-textured|--scene textured --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera strafe:2.5 --bounces 1,8 --sequences 8 --width 128 --height 128"
+  "motion-speeds|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera strafe:1,strafe:5 --bounces 1,8 --sequences 8 --width 128 --height 128"
+  "motion-edges|--scene edges --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle --camera static,strafe:2.5 --bounces 1,8 --sequences 8 --width 128 --height 128"
   "still-256|--methods white,sobol,stbn,mask-r2,mask-rot,blocknet,sort-cycle --camera static --bounces 1,8 --sequences 4 --width 256 --height 256"
   "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8 --sequences 4 --width 128 --height 128"
   "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1 --bounces 1,8 --sequences 4 --width 128 --height 128"
@@ -80,13 +82,13 @@ else
 fi
 
 for m in begin end; do
-  for n in "${names[@]}"; do
+  for n in "${names[@]}" motion-scenes; do
     if ! grep -qx "<!-- reproduce:$n $m -->" docs/results.md; then
       echo "reproduce: docs/results.md lacks the marker <!-- reproduce:$n $m -->" >&2
       exit 1
     fi
   done
-  for n in motion pick; do
+  for n in motion pick motion-scenes; do
     if ! grep -qx "<!-- reproduce:$n $m -->" README.md; then
       echo "reproduce: README.md lacks the marker <!-- reproduce:$n $m -->" >&2
       exit 1
@@ -201,6 +203,46 @@ picks() {
     }'
 }
 
+# From "SCENE=report.md" arguments: one row per configuration under motion (strafe columns of
+# each headline table) with the best preset per frame and accumulated, and the default's and
+# the free masks' own figures (per frame / TAA; standard errors left out).
+motion_rows() {
+  local a
+  {
+    echo "| configuration | best per frame | best after TAA | \`sort-cycle\` (default) | \`stbn\` | \`mask-r2\` |"
+    echo "|---|---|---|---|---|---|"
+    for a in "$@"; do
+      headline "${a#*=}" | awk -v scene="${a%%=*}" '
+        BEGIN { FS = " *[|] *" }
+        function num(x) { sub(/ *±.*/, "", x); return x }
+        /^[|] method [|]/ { for (i = 3; i < NF; i++) cfg[i] = $i; nc = NF - 1; next }
+        /^[|]---/ || /^[|] [*]/ { next }
+        /^[|] / {
+          m = $2
+          if (m == "white" || m ~ /:/) next
+          ms[++nm] = m
+          for (i = 3; i <= nc; i++) { split($i, v, " / "); f[m, i] = num(v[1]); a[m, i] = num(v[2]) }
+        }
+        END {
+          for (i = 3; i <= nc; i++) {
+            if (cfg[i] !~ /^strafe/) continue
+            bf = ""; ba = ""
+            for (j = 1; j <= nm; j++) {
+              m = ms[j]
+              if (bf == "" || f[m, i] + 0 < f[bf, i] + 0) bf = m
+              if (ba == "" || a[m, i] + 0 < a[ba, i] + 0) ba = m
+            }
+            c = cfg[i]; sub(/ spp1$/, "", c)
+            line = "| " scene " " c " | `" bf "` " f[bf, i] " | `" ba "` " a[ba, i] " |"
+            split("sort-cycle stbn mask-r2", show, " ")
+            for (k = 1; k <= 3; k++) line = line " " f[show[k], i] " / " a[show[k], i] " |"
+            print line
+          }
+        }'
+    done
+  }
+}
+
 source tools/splice.sh
 
 # The new results.md is assembled in a temporary file beside its destination.
@@ -261,6 +303,21 @@ for r in "${RUNS[@]}"; do
     fi
   done
 done
+
+# Under motion across scenes and speeds, from whichever motion runs have a report.
+if ((!quick)); then
+  scenes=()
+  for s in cornell=motion cornell=motion-speeds textured=motion-textured edges=motion-edges; do
+    [ -f "out/results/${s#*=}/report.md" ] && scenes+=("${s%%=*}=out/results/${s#*=}/report.md")
+  done
+  if ((${#scenes[@]})); then
+    rows_body="$(mktemp out/results/.motion-scenes.XXXXXX)"
+    tmpfiles+=("$rows_body")
+    { echo; motion_rows "${scenes[@]}"; echo; } > "$rows_body"
+    splice reproduce:motion-scenes "$work" "$rows_body"
+    splice reproduce:motion-scenes README.md "$rows_body"
+  fi
+fi
 
 mv "$work" "$results_md"
 echo "reproduce: wrote $results_md and $figures_dir/"
