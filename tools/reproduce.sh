@@ -208,11 +208,14 @@ picks() {
 # the free masks' own figures (per frame / TAA; standard errors left out).
 motion_rows() {
   local a
+  echo "| configuration | best per frame | best after TAA | \`sort-cycle\` (default) | \`stbn\` | \`mask-r2\` |"
+  echo "|---|---|---|---|---|---|"
   {
-    echo "| configuration | best per frame | best after TAA | \`sort-cycle\` (default) | \`stbn\` | \`mask-r2\` |"
-    echo "|---|---|---|---|---|---|"
+    local n=0 scenes=" "
     for a in "$@"; do
-      headline "${a#*=}" | awk -v scene="${a%%=*}" '
+      # a scene's rank: the position of its first argument
+      [[ "$scenes" == *" ${a%%=*} "* ]] || { n=$((n + 1)); scenes+="${a%%=*} "; }
+      headline "${a#*=}" | awk -v scene="${a%%=*}" -v order="$n" '
         BEGIN { FS = " *[|] *" }
         function num(x) { sub(/ *±.*/, "", x); return x }
         /^[|] method [|]/ { for (i = 3; i < NF; i++) cfg[i] = $i; nc = NF - 1; next }
@@ -233,13 +236,16 @@ motion_rows() {
               if (ba == "" || a[m, i] + 0 < a[ba, i] + 0) ba = m
             }
             c = cfg[i]; sub(/ spp1$/, "", c)
-            line = "| " scene " " c " | `" bf "` " f[bf, i] " | `" ba "` " a[ba, i] " |"
+            # sort keys: scene (argument order), px/frame, bounces
+            split(c, part, /[: ]b?/)
+            line = order "\t" part[2] "\t" part[3] "\t"
+            line = line "| " scene " " c " | `" bf "` " f[bf, i] " | `" ba "` " a[ba, i] " |"
             split("sort-cycle stbn mask-r2", show, " ")
             for (k = 1; k <= 3; k++) line = line " " f[show[k], i] " / " a[show[k], i] " |"
             print line
           }
         }'
-    done
+    done | sort -t "$(printf '\t')" -k1,1n -k2,2n -k3,3n | cut -f4-
   }
 }
 
