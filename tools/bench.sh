@@ -5,6 +5,7 @@
 #
 #   bash tools/bench.sh            all configurations (a few minutes on 2 quiet cores)
 #   bash tools/bench.sh --bin B    use the binary B instead of building a release one
+#   bash tools/bench.sh --rounds N passes over all configurations (default 3; the median counts)
 #
 # Times depend on the machine and its load; shares of the trace pass of the same run depend
 # on them much less. Run it on a quiet machine. Nothing is written unless every run succeeds.
@@ -12,9 +13,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bin=""
+ROUNDS=3
 while (($#)); do
   case "$1" in
     --bin) [ $# -ge 2 ] || { echo "bench.sh: --bin needs a path" >&2; exit 2; }; bin="$2"; shift ;;
+    --rounds) [[ "${2:-}" =~ ^[1-9]$ ]] || { echo "bench.sh: --rounds needs 1-9" >&2; exit 2; }; ROUNDS="$2"; shift ;;
     -h | --help) sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
@@ -49,14 +52,29 @@ tmpfiles+=("$table")
   echo "| method | camera | size, bounces | trace | passes (largest first) | all permutation passes |"
   echo "|---|---|---|---|---|---|"
 } > "$table"
-for c in "${CONFIGS[@]}"; do
-  IFS='|' read -r method camera size bounces <<< "$c"
-  out="$(mktemp)"
-  tmpfiles+=("$out")
-  echo "== bench --method $method --camera-path $camera ${size} --bounces $bounces" >&2
-  "$bin" bench --method "$method" --camera-path "$camera" --width "${size%x*}" \
-    --height "${size#*x}" --bounces "$bounces" --spp 1 --frames 8 > "$out"
-  cat "$out" >&2
+# ROUNDS passes over all configurations, interleaved so that a slow spell of the machine hits
+# every configuration alike; each configuration reports its round with the median share.
+outs=()
+for ((r = 0; r < ROUNDS; r++)); do
+  for i in "${!CONFIGS[@]}"; do
+    IFS='|' read -r method camera size bounces <<< "${CONFIGS[$i]}"
+    out="$(mktemp)"
+    tmpfiles+=("$out")
+    outs[r * ${#CONFIGS[@]} + i]="$out"
+    echo "== round $((r + 1))/$ROUNDS: bench --method $method --camera-path $camera ${size} --bounces $bounces" >&2
+    "$bin" bench --method "$method" --camera-path "$camera" --width "${size%x*}" \
+      --height "${size#*x}" --bounces "$bounces" --spp 1 --frames 8 > "$out"
+    cat "$out" >&2
+  done
+done
+# "  permutation passes MS ms NS ns/px: SHARE% of trace" (0 without permutation passes)
+share() { awk '$1 == "permutation" { s = $7 + 0 } END { print s + 0 }' "$1"; }
+for i in "${!CONFIGS[@]}"; do
+  IFS='|' read -r method camera size bounces <<< "${CONFIGS[$i]}"
+  out="$(for ((r = 0; r < ROUNDS; r++)); do
+    o="${outs[r * ${#CONFIGS[@]} + i]}"
+    echo "$(share "$o") $o"
+  done | sort -n | awk -v m=$(((ROUNDS + 1) / 2)) 'NR == m { print $2 }')"
   awk -v method="$method" -v camera="$camera" -v size="$size" -v bounces="$bounces" '
     # "  pass NAME median MS ms NS ns/px SHARE% of trace"
     $1 == "pass" && $2 == "trace" { trace = sprintf("%.1f ms, %.0f ns/px", $4, $6) }
@@ -78,7 +96,7 @@ done
 cpu="$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)"
 {
   echo
-  echo "Shares are of the trace pass of the same run; medians of 8 timed frames; $(nproc) cores ($cpu), load average $(cut -d' ' -f1-3 /proc/loadavg) at the end. Regenerate: \`bash tools/bench.sh\`."
+  echo "Shares are of the trace pass of the same run; medians of 8 timed frames, the run with the median share of $ROUNDS interleaved rounds; $(nproc) cores ($cpu), load average $(cut -d' ' -f1-3 /proc/loadavg) at the end. Regenerate: \`bash tools/bench.sh\`."
   echo
 } >> "$table"
 
