@@ -398,28 +398,22 @@ fn other_bad_arguments_are_errors_not_panics() {
     let o = c.run(&["render", "--no-such-flag"], &[]);
     c.expect_error(&o, &["unexpected argument '--no-such-flag'"]);
     let out = c.out();
-    let o = c.run(
-        &[
-            "eval",
+    let out = out.to_str().expect("utf-8");
+    for (flag, value, want) in [
+        (
             "--scene",
             "/nonexistent.glb",
-            "--out",
-            out.to_str().expect("utf-8"),
-        ],
-        &[],
-    );
-    c.expect_error(&o, &["/nonexistent.glb: file not found"]);
-    let o = c.run(
-        &[
-            "eval",
+            "/nonexistent.glb: file not found",
+        ),
+        (
             "--first-sequence",
             "4000000000",
-            "--out",
-            out.to_str().expect("utf-8"),
-        ],
-        &[],
-    );
-    c.expect_error(&o, &["--first-sequence 4000000000 is above"]);
+            "--first-sequence 4000000000 is above",
+        ),
+    ] {
+        let o = c.run(&["eval", flag, value, "--out", out], &[]);
+        c.expect_error(&o, &[want]);
+    }
     let o = c.run(
         &[
             "soak",
