@@ -194,12 +194,11 @@ fn scene_over_device_limits() {
 fn node_graphs_that_are_not_trees_and_scenes_over_the_budget() {
     use blueshift_scene::presets::hostile;
     let c = Case::new();
-    // At run time (see loader_limits.rs): the target directory may be shared between checkouts.
-    let dir = std::env::var_os("CARGO_MANIFEST_DIR").map_or_else(
-        || Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf(),
-        Into::into,
+    // Found at run time (see loader_limits.rs): the target directory may be shared.
+    let seed = blueshift_assets::workspace_path(
+        "fuzz/corpus/gltf/seed_regress_node_cycle.glb",
+        Path::is_file,
     );
-    let seed = dir.join("../../fuzz/corpus/gltf/seed_regress_node_cycle.glb");
     let cases = [
         (
             "cycle.glb",

@@ -21,13 +21,12 @@ fn load(bytes: &[u8], budget: LoadBudget) -> Result<Scene, SceneError> {
 #[test]
 fn a_node_that_lists_itself_is_a_cycle() {
     // Found by the `gltf` fuzz target: node 0 lists itself three times among its children.
-    // The manifest directory at run time: a test binary built in another checkout that shares
-    // the target directory would otherwise read that checkout's files (or none).
-    let dir = std::env::var_os("CARGO_MANIFEST_DIR").map_or_else(
-        || Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf(),
-        Into::into,
+    // Its path is resolved at run time: a test binary built in another checkout sharing the target
+    // directory would otherwise read that checkout's files (or none).
+    let path = blueshift_assets::workspace_path(
+        "fuzz/corpus/gltf/seed_regress_node_cycle.glb",
+        Path::is_file,
     );
-    let path = dir.join("../../fuzz/corpus/gltf/seed_regress_node_cycle.glb");
     let bytes = std::fs::read(&path).expect("regression seed");
     let e = load(&bytes, LoadBudget::default()).unwrap_err();
     assert!(matches!(e, SceneError::NodeCycle { node: 0, .. }), "{e}");
