@@ -24,12 +24,15 @@ vec3 g_albedo0;
 uvec2 g_mask_px;
 
 // Sample dimension `dim` of sample `index` for this pixel: from the mask in the mask modes
-// (first MASK_DIMS dimensions, read at g_mask_px, each at its own fixed offset so dimensions decorrelate,
-// rotated by the golden ratio per sample for spp > 1), else from the seeded sampler.
+// (first MASK_DIMS dimensions, or those the flags' dimension bits select; read at g_mask_px,
+// each at its own fixed offset so dimensions decorrelate, rotated by the golden ratio per
+// sample for spp > 1), else from the seeded sampler.
 float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
     float x = to_unit(TRACE_SAMPLE_BITS(seed, index, dim));
 #if TRACE_MASK
-    if (P.mask_mode != MASK_MODE_NONE && dim < MASK_DIMS) {
+    uint dim_set = P.flags >> TRACE_FLAG_MASK_DIMS_SHIFT;
+    bool from_mask = dim < MASK_DIMS && (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u);
+    if (P.mask_mode != MASK_MODE_NONE && from_mask) {
         uint n = P.mask_size;
         uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) + dim * uvec2(37u, 71u)) % n;
         uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.frame % P.mask_frames : 0u;

@@ -261,3 +261,58 @@ fn still_view_reuses_gbuffer_and_classes() {
         "the seeds are no longer a permutation"
     );
 }
+
+/// Which dimensions sort-cycle leaves to the mask (`Method::mask_dims`), seen in its images:
+/// without anti-aliasing jitter a still view renders exactly what `mask=none` renders (the
+/// light and BSDF samples stay the seeds'), with jitter it does not (the mask moves the
+/// rays); a moving view takes the first vertex's BSDF sample from the mask too, which
+/// `mask=jitter` never does.
+#[test]
+fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
+    let gpu = Gpu::new();
+    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
+    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
+    let frames = |method: &str, no_jitter: bool, moving: bool| {
+        let cfg = RenderConfig {
+            bounces: 1,
+            method: method.parse().unwrap(),
+            no_jitter,
+            ..RenderConfig::new(24, 16)
+        };
+        let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+        let mut cam = s.camera_or_default();
+        (0..4)
+            .map(|_| {
+                if moving {
+                    cam.position.x += 0.01;
+                    r.set_camera(cam);
+                }
+                r.render_frame().unwrap();
+                r.read_estimate().unwrap()
+            })
+            .collect::<Vec<_>>()
+    };
+    let bits = |f: &[Vec<[f32; 4]>]| -> Vec<u32> {
+        f.iter().flatten().flatten().map(|v| v.to_bits()).collect()
+    };
+    let same = |a: &str, b: &str, no_jitter: bool, moving: bool| {
+        bits(&frames(a, no_jitter, moving)) == bits(&frames(b, no_jitter, moving))
+    };
+    let none = "sort-cycle:mask=none";
+    assert!(
+        same("sort-cycle", none, true, false),
+        "still: the mask drove a light or BSDF sample"
+    );
+    assert!(
+        !same("sort-cycle", none, false, false),
+        "still: the jitter is not the mask's"
+    );
+    assert!(
+        same("sort-cycle:mask=jitter", none, true, true),
+        "mask=jitter drove more than the jitter"
+    );
+    assert!(
+        !same("sort-cycle", none, true, true),
+        "moving: the first bounce is not the mask's"
+    );
+}

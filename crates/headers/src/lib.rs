@@ -20,6 +20,10 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("TRACE_FLAG_NO_JITTER", params::TRACE_FLAG_NO_JITTER)
                 .constant("TRACE_FLAG_DEMODULATE", params::TRACE_FLAG_DEMODULATE)
                 .constant("TRACE_FLAG_MASK_ANCHORED", params::TRACE_FLAG_MASK_ANCHORED)
+                .constant(
+                    "TRACE_FLAG_MASK_DIMS_SHIFT",
+                    params::TRACE_FLAG_MASK_DIMS_SHIFT,
+                )
                 .constant("ANCHOR_FRAC_BITS", params::ANCHOR_FRAC_BITS)
                 .constant_f32("DEMODULATE_MIN_ALBEDO", params::DEMODULATE_MIN_ALBEDO)
                 .constant("MASK_MODE_NONE", params::MASK_MODE_NONE)

@@ -141,6 +141,10 @@ pub const TRACE_FLAG_DEMODULATE: u32 = 8;
 /// screen position that follows the pixel's surface, `permute/follow_anchors`) instead of at
 /// the pixel, so a surface keeps its mask values while the image moves.
 pub const TRACE_FLAG_MASK_ANCHORED: u32 = 16;
+/// `TraceParams::flags`: bits from this one up select which of the first `MASK_DIMS`
+/// dimensions a mask mode drives (bit d: dimension d); none set: all of them.
+pub const TRACE_FLAG_MASK_DIMS_SHIFT: u32 = 16;
+const _: () = assert!(TRACE_FLAG_MASK_DIMS_SHIFT + MASK_DIMS <= 32);
 /// Fraction bits of an anchor coordinate: a seed packs x and y, each 16-bit fixed point
 /// (8.8), so anchors wrap at 256 px and a mask tile must divide 256.
 pub const ANCHOR_FRAC_BITS: u32 = 8;

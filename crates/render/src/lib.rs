@@ -43,7 +43,7 @@ pub use camera_path::{CameraPath, Keyframe};
 pub use config::{Accumulation, RenderConfig};
 pub use error::{RenderError, Result};
 pub use method::{
-    GRID_BLOCK, Grouping, Key, Method, Motion, Pairs, Permutation, Points, Transport,
+    GRID_BLOCK, Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Transport,
 };
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
@@ -107,6 +107,8 @@ pub struct Renderer {
     assets: MethodAssets,
     camera: Camera,
     view_offset: (f32, f32),
+    /// The camera or view window changed since the last frame was recorded.
+    view_changed: bool,
     frame: u64,
     accumulated: u32,
     /// (skewed classes, classes counted) of the last sorting pass (`SortInput::stats`).
@@ -186,6 +188,7 @@ impl Renderer {
             assets: assets.clone(),
             camera: scene.camera_or_default(),
             view_offset: (0.0, 0.0),
+            view_changed: false,
             frame: 0,
             accumulated: 0,
             sort_stats: local("frame.sort_stats", 8)?,
@@ -231,7 +234,14 @@ impl Renderer {
         }
     }
 
+    /// Whether the next frame sees the scene from another view than the frame before it
+    /// (`Method::mask_dims` chooses by it); a first frame has no view before it.
+    pub fn moving(&self) -> bool {
+        self.view_changed && self.frame > 0
+    }
+
     fn view_moved(&mut self) {
+        self.view_changed = true;
         if self.cfg.accumulation == Accumulation::Mean {
             self.accumulated = 0;
         }
@@ -311,6 +321,7 @@ impl Renderer {
         }
         self.make_state()?;
         let tp = self.trace_params();
+        self.view_changed = false;
         let (offset, times) = self.prepare_frame(&tp)?;
         let sort = match self.plan.sort() {
             Some(s) => Some(self.sort_params(&s, offset)?),

@@ -80,6 +80,24 @@ pub enum Points {
     Cycle,
 }
 
+/// Which sample dimensions the void-and-cluster mask drives instead of the seed's sampler
+/// (the rest stay the seed's, so the sort still arranges them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MaskDims {
+    /// None: the seeds carry every dimension.
+    None,
+    /// The camera jitter: a seed's coverage of an edge is a property of the pixel it lands on,
+    /// not of the seed, so no key predicts it; the mask makes it blue instead. Rotated by R2
+    /// every frame while the view stands still (each pixel's jitter then converges like an R2
+    /// sequence), shifted by R2 while it moves (`MASK_MODE_2D`; `MASK_MODE_ROTATE`'s per-pixel
+    /// sequence means nothing to a filter that follows the surface).
+    Jitter,
+    /// [`MaskDims::Jitter`], and while the view moves also the first vertex's BSDF sample:
+    /// keys recorded a cycle ago at another place no longer predict it, and the mask's blue
+    /// first bounce beats stale keys (with a still view the sort keeps it, and wins at depth).
+    Motion,
+}
+
 /// A seed-permutation method: each field gates its own passes and shader code.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Permutation {
@@ -89,6 +107,7 @@ pub struct Permutation {
     pub motion: Motion,
     pub pairs: Pairs,
     pub points: Points,
+    pub mask: MaskDims,
 }
 
 /// A way of choosing per-pixel randomness over frames.
@@ -135,6 +154,7 @@ const PAPER: Permutation = Permutation {
     motion: Motion::None,
     pairs: Pairs::Off,
     points: Points::Fixed,
+    mask: MaskDims::None,
 };
 
 const SORT: Permutation = Permutation {
@@ -149,12 +169,14 @@ const HISTORY: Permutation = Permutation {
     motion: Motion::Reproject,
     pairs: Pairs::Thin,
     points: Points::Fixed,
+    mask: MaskDims::None,
 };
 
 const CYCLE: Permutation = Permutation {
     grouping: Grouping::StillSurfaces,
     transport: Transport::None,
     points: Points::Cycle,
+    mask: MaskDims::Motion,
     ..PAPER
 };
 
@@ -321,6 +343,23 @@ impl Method {
     /// Whether the sorting pass ranks history keys (`permute/history_key`).
     pub fn history_keys(self) -> bool {
         self.has(|p| p.key == Key::History)
+    }
+
+    /// The sample dimensions the mask drives (bit d: dimension d) instead of the seed's
+    /// sampler, for a view that `moving` or stands still; 0: none (the mask methods drive
+    /// all of the first `MASK_DIMS`, and say so with their own mask mode).
+    pub fn mask_dims(self, moving: bool) -> u32 {
+        use blueshift_layout::params::DIMS_PER_BOUNCE;
+        let jitter = 0b11;
+        // Vertex 0's BSDF sample: lobe choice, direction (2) and Russian roulette, after its
+        // three light dimensions (see `DIMS_PER_BOUNCE`).
+        let bsdf = ((1 << (DIMS_PER_BOUNCE - 3)) - 1) << (2 + 3);
+        match self.permutation().map(|p| p.mask) {
+            Some(MaskDims::Jitter) => jitter,
+            Some(MaskDims::Motion) if moving => jitter | bsdf,
+            Some(MaskDims::Motion) => jitter,
+            _ => 0,
+        }
     }
 
     /// Whether the pairs' checkerboard phase is a hash bit of the frame rather than its parity

@@ -1,19 +1,22 @@
 //! The spelled-out form of a permutation method, for experiments: `PRESET:field=value,...`,
 //! e.g. `sort:transport=grid,key=history,motion=reproject`. Each field overrides the preset's.
-use crate::method::{Grouping, Key, Method, Motion, Pairs, Permutation, Points, Transport};
+use crate::method::{
+    Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Transport,
+};
 
 /// (field, values in order of their enum) of every field, for parsing and help.
-const FIELDS: [(&str, &[&str]); 6] = [
+const FIELDS: [(&str, &[&str]); 7] = [
     ("key", &["raw", "demod", "history"]),
     ("grouping", &["blocks", "surfaces", "still-surfaces"]),
     ("transport", &["none", "retarget", "grid"]),
     ("motion", &["none", "reproject"]),
     ("pairs", &["off", "thin", "adaptive", "all"]),
     ("points", &["fixed", "cycle"]),
+    ("mask", &["none", "jitter", "motion"]),
 ];
 
 /// (field, value) of each field of `p`, in the order of [`FIELDS`].
-pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 6] {
+pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 7] {
     let idx = [
         p.key as usize,
         p.grouping as usize,
@@ -21,6 +24,7 @@ pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 6] {
         p.motion as usize,
         p.pairs as usize,
         p.points as usize,
+        p.mask as usize,
     ];
     std::array::from_fn(|i| (FIELDS[i].0, FIELDS[i].1[idx[i]]))
 }
@@ -51,7 +55,8 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
         "transport" => p.transport = [Transport::None, Transport::Retarget, Transport::Grid][i],
         "motion" => p.motion = [Motion::None, Motion::Reproject][i],
         "pairs" => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive, Pairs::All][i],
-        _ => p.points = [Points::Fixed, Points::Cycle][i],
+        "points" => p.points = [Points::Fixed, Points::Cycle][i],
+        _ => p.mask = [MaskDims::None, MaskDims::Jitter, MaskDims::Motion][i],
     }
     Ok(())
 }
@@ -151,12 +156,26 @@ mod tests {
         assert_eq!(m.name(), "sort:key=demod,transport=grid");
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
-        let c: Method = "sort:points=cycle,grouping=still-surfaces"
+        let c: Method = "sort:points=cycle,grouping=still-surfaces,mask=motion"
             .parse()
             .expect("valid");
         assert_eq!(c, Method::SORT_CYCLE);
         assert!(c.cycles_points() && c.advances_index() && c.block(4) == crate::GRID_BLOCK);
         assert_eq!(c.default_sampler(), blueshift_sampling::Sampler::BlockNet);
+        let plain: Method = "sort-cycle:mask=none".parse().expect("valid");
+        assert_eq!(plain.name(), "sort:grouping=still-surfaces,points=cycle");
+        assert_eq!((plain.mask_dims(false), plain.mask_dims(true)), (0, 0));
+        // Moving, the mask takes the first vertex's BSDF sample too, and nothing else.
+        let (still, moving) = (c.mask_dims(false), c.mask_dims(true));
+        assert_eq!(still & !moving, 0);
+        assert_eq!(
+            still,
+            "sort-cycle:mask=jitter"
+                .parse::<Method>()
+                .unwrap()
+                .mask_dims(true)
+        );
+        assert_eq!((moving & !still).count_ones(), 4);
     }
 
     #[test]

@@ -3,7 +3,7 @@ use crate::{Method, RenderConfig, RenderError, Renderer};
 use blueshift_layout::params::{
     MASK_MODE_2D, MASK_MODE_NONE, MASK_MODE_ROTATE, MASK_MODE_SPATIOTEMPORAL,
     TRACE_FLAG_ADVANCE_INDEX, TRACE_FLAG_DEMODULATE, TRACE_FLAG_MASK_ANCHORED,
-    TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
+    TRACE_FLAG_MASK_DIMS_SHIFT, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
 use blueshift_permute::CYCLE_FRAMES;
 use blueshift_sampling::Sampler;
@@ -16,13 +16,15 @@ impl Renderer {
         let basis = self.camera.basis(vw as f32 / vh as f32);
         let m = c.method;
         let n = self.assets.n;
-        let flags = trace_flags(c);
+        let dims = m.mask_dims(self.moving());
+        let flags = trace_flags(c) | dims << TRACE_FLAG_MASK_DIMS_SHIFT;
+        let mask_mode = mask_mode_of(c, self.moving());
         let (mask_size, mask_frames, off) = match m.mask_method() {
+            _ if dims != 0 && mask_mode == MASK_MODE_2D => (n, 1, r2_offset(self.frame, n)),
             Method::MaskR2 => (n, 1, r2_offset(self.frame, n)),
             Method::Stbn | Method::Fast => (self.assets.stbn_n, self.assets.stbn_frames, (0, 0)),
             _ => (n, 1, (0, 0)),
         };
-        let mask_mode = mask_mode_of(c);
         TraceParams {
             cam_origin: basis.position,
             cam_forward: basis.forward,
@@ -54,8 +56,16 @@ impl Renderer {
     }
 }
 
-/// The trace pass's mask mode for configuration `c`.
-fn mask_mode_of(c: &RenderConfig) -> u32 {
+/// The trace pass's mask mode for configuration `c` and a view that is `moving` or not.
+fn mask_mode_of(c: &RenderConfig, moving: bool) -> u32 {
+    if c.method.mask_dims(moving) != 0 {
+        // Shifted while moving, rotated while still: see `MaskDims::Jitter`.
+        return if moving {
+            MASK_MODE_2D
+        } else {
+            MASK_MODE_ROTATE
+        };
+    }
     match c.method.mask_method() {
         Method::MaskR2 => MASK_MODE_2D,
         Method::MaskRot => MASK_MODE_ROTATE,
@@ -158,8 +168,35 @@ mod tests {
                     method: m,
                     ..RenderConfig::new(8, 8)
                 };
-                assert_ne!(mask_mode_of(&c), MASK_MODE_NONE, "{name}");
+                for moving in [false, true] {
+                    assert_ne!(mask_mode_of(&c, moving), MASK_MODE_NONE, "{name}");
+                }
             }
         }
+    }
+
+    /// A method whose seeds leave some dimensions to the mask runs a mask variant in every
+    /// state, within the dimensions the mask modes drive (the flag's bits above them would be
+    /// ignored by the shader, and a method would silently lose them).
+    #[test]
+    fn mask_dimensions_have_a_mask_mode() {
+        use blueshift_layout::params::MASK_DIMS;
+        let mut some = 0;
+        for (name, m) in Method::PRESETS {
+            let c = RenderConfig {
+                method: m,
+                ..RenderConfig::new(8, 8)
+            };
+            for moving in [false, true] {
+                let dims = m.mask_dims(moving);
+                if dims != 0 {
+                    some += 1;
+                    assert_ne!(mask_mode_of(&c, moving), MASK_MODE_NONE, "{name}");
+                    assert_eq!(dims >> MASK_DIMS, 0, "{name}");
+                    assert_eq!(dims & 3, 3, "{name}: the jitter comes first");
+                }
+            }
+        }
+        assert!(some > 0, "no preset leaves dimensions to the mask");
     }
 }

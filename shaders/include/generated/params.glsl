@@ -63,6 +63,7 @@ const uint TRACE_FLAG_ADVANCE_INDEX = 2u;
 const uint TRACE_FLAG_NO_JITTER = 4u;
 const uint TRACE_FLAG_DEMODULATE = 8u;
 const uint TRACE_FLAG_MASK_ANCHORED = 16u;
+const uint TRACE_FLAG_MASK_DIMS_SHIFT = 16u;
 const uint ANCHOR_FRAC_BITS = 8u;
 const float DEMODULATE_MIN_ALBEDO = 0.02;
 const uint MASK_MODE_NONE = 0u;
