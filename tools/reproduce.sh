@@ -251,12 +251,8 @@ motion_rows() {
 
 source tools/splice.sh
 
-# The new results.md is assembled in a temporary file beside its destination.
-work="$(mktemp "$results_md.XXXXXX.tmp")"
-tmpfiles+=("$work")
-cp docs/results.md "$work"
-chmod 644 "$work"
-
+# Every eval first: the docs are read only once they are done, so edits made to them during a
+# long run are kept.
 for r in "${RUNS[@]}"; do
   name="${r%%|*}"
   args="${r#*|}"
@@ -274,6 +270,19 @@ for r in "${RUNS[@]}"; do
     rm -rf "$out"
     mv "$stage" "$out"
   fi
+done
+
+# The new results.md is assembled in a temporary file beside its destination.
+work="$(mktemp "$results_md.XXXXXX.tmp")"
+tmpfiles+=("$work")
+cp docs/results.md "$work"
+chmod 644 "$work"
+
+for r in "${RUNS[@]}"; do
+  name="${r%%|*}"
+  args="${r#*|}"
+  [ -n "$only" ] && [ "$name" != "$only" ] && continue
+  out="out/results/$name"
 
   body="$(mktemp "out/results/.$name.body.XXXXXX")"
   tmpfiles+=("$body")
