@@ -251,12 +251,17 @@ motion_rows() {
 
 source tools/splice.sh
 
+# The runs to make: all, or the one --only names.
+selected=()
+for r in "${RUNS[@]}"; do
+  if [ -z "$only" ] || [ "${r%%|*}" = "$only" ]; then selected+=("$r"); fi
+done
+
 # Every eval first: the docs are read only once they are done, so edits made to them during a
 # long run are kept.
-for r in "${RUNS[@]}"; do
+for r in "${selected[@]}"; do
   name="${r%%|*}"
   args="${r#*|}"
-  [ -n "$only" ] && [ "$name" != "$only" ] && continue
   out="out/results/$name"
   stage="out/results/.$name.new"
   if ((reuse)); then
@@ -278,10 +283,9 @@ tmpfiles+=("$work")
 cp docs/results.md "$work"
 chmod 644 "$work"
 
-for r in "${RUNS[@]}"; do
+for r in "${selected[@]}"; do
   name="${r%%|*}"
   args="${r#*|}"
-  [ -n "$only" ] && [ "$name" != "$only" ] && continue
   out="out/results/$name"
 
   body="$(mktemp "out/results/.$name.body.XXXXXX")"

@@ -16,13 +16,13 @@ impl Renderer {
         let basis = self.camera.basis(vw as f32 / vh as f32);
         let m = c.method;
         let n = self.assets.n;
-        let dims = m.mask_dims(self.moving());
-        let flags = trace_flags(c) | dims << TRACE_FLAG_MASK_DIMS_SHIFT;
-        let mask_mode = mask_mode_of(c, self.moving());
-        let (mask_size, mask_frames, off) = match m.mask_method() {
-            _ if dims != 0 && mask_mode == MASK_MODE_2D => (n, 1, r2_offset(self.frame, n)),
-            Method::MaskR2 => (n, 1, r2_offset(self.frame, n)),
-            Method::Stbn | Method::Fast => (self.assets.stbn_n, self.assets.stbn_frames, (0, 0)),
+        let moving = self.moving();
+        let flags = trace_flags(c) | m.mask_dims(moving) << TRACE_FLAG_MASK_DIMS_SHIFT;
+        let mask_mode = mask_mode_of(c, moving);
+        // The mode alone says which mask and offsets: whichever method chose it.
+        let (mask_size, mask_frames, off) = match mask_mode {
+            MASK_MODE_2D => (n, 1, r2_offset(self.frame, n)),
+            MASK_MODE_SPATIOTEMPORAL => (self.assets.stbn_n, self.assets.stbn_frames, (0, 0)),
             _ => (n, 1, (0, 0)),
         };
         TraceParams {
