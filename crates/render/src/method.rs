@@ -214,8 +214,9 @@ impl Method {
         ("sort-cycle", Method::SORT_CYCLE),
     ];
 
-    /// The preset's name, or the spelled-out form `sort:field=value,...` of the fields that
-    /// differ from `sort`.
+    /// The preset's name, or the spelled-out form `PRESET:field=value,...` relative to the
+    /// permutation preset it differs from in the fewest fields (the first such preset), so an
+    /// ablation reads as the method it changes (`sort-cycle:mask=none`).
     pub fn name(self) -> String {
         if let Some((name, _)) = Self::PRESETS.iter().find(|(_, m)| *m == self) {
             return (*name).to_string();
@@ -223,13 +224,20 @@ impl Method {
         let Method::Permute(p) = self else {
             return format!("{self:?}"); // every baseline is a preset
         };
-        let fields: Vec<String> = crate::method_spec::fields(&p)
-            .into_iter()
-            .zip(crate::method_spec::fields(&SORT))
-            .filter(|(a, b)| a != b)
-            .map(|((field, value), _)| format!("{field}={value}"))
-            .collect();
-        format!("sort:{}", fields.join(","))
+        let own = crate::method_spec::fields(&p);
+        let differing = |q: &Permutation| -> Vec<String> {
+            own.iter()
+                .zip(crate::method_spec::fields(q))
+                .filter(|(a, b)| **a != *b)
+                .map(|((field, value), _)| format!("{field}={value}"))
+                .collect()
+        };
+        let (base, fields) = Self::PRESETS
+            .iter()
+            .filter_map(|(n, m)| m.permutation().map(|q| (*n, differing(&q))))
+            .min_by_key(|(_, f)| f.len())
+            .expect("sort is a permutation preset");
+        format!("{base}:{}", fields.join(","))
     }
 
     /// All preset names, for error messages and `--help`.

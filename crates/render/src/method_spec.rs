@@ -154,6 +154,11 @@ mod tests {
         assert_eq!(adaptive, Method::SORT_GRID_ADAPTIVE);
         let m: Method = "sort:transport=grid,key=demod".parse().expect("valid");
         assert_eq!(m.name(), "sort:key=demod,transport=grid");
+        // Named after the nearest preset, whichever preset it was written from.
+        let near: Method = "sort:points=cycle,grouping=surfaces,mask=motion"
+            .parse()
+            .expect("valid");
+        assert_eq!(near.name(), "sort-cycle:grouping=surfaces");
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
         let c: Method = "sort:points=cycle,grouping=still-surfaces,mask=motion"
@@ -163,7 +168,8 @@ mod tests {
         assert!(c.cycles_points() && c.advances_index() && c.block(4) == crate::GRID_BLOCK);
         assert_eq!(c.default_sampler(), blueshift_sampling::Sampler::BlockNet);
         let plain: Method = "sort-cycle:mask=none".parse().expect("valid");
-        assert_eq!(plain.name(), "sort:grouping=still-surfaces,points=cycle");
+        assert_eq!(plain.name(), "sort-cycle:mask=none");
+        assert_eq!(plain.name().parse::<Method>(), Ok(plain));
         assert_eq!((plain.mask_dims(false), plain.mask_dims(true)), (0, 0));
         // Moving, the mask takes the first vertex's BSDF sample too, and nothing else.
         let (still, moving) = (c.mask_dims(false), c.mask_dims(true));
