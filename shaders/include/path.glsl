@@ -22,6 +22,12 @@ vec3 g_albedo0;
 // Where this pixel reads the mask: the pixel itself, or with TRACE_FLAG_MASK_ANCHORED its
 // seed's anchor (set by main).
 uvec2 g_mask_px;
+#if TRACE_MASK
+// TRACE_FLAG_SEED_JITTER_ON_TEXTURES: the jitter dimensions come from the seed (set by main
+// from the pixel's previous primary hit); g_textured0: this frame's primary hit is textured.
+bool g_seed_jitter;
+bool g_textured0;
+#endif
 
 // Sample dimension `dim` of sample `index` for this pixel: from the mask in the mask modes
 // (first MASK_DIMS dimensions, or those the flags' dimension bits select; read at g_mask_px,
@@ -31,7 +37,8 @@ float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
     float x = to_unit(TRACE_SAMPLE_BITS(seed, index, dim));
 #if TRACE_MASK
     uint dim_set = P.flags >> TRACE_FLAG_MASK_DIMS_SHIFT;
-    bool from_mask = dim < MASK_DIMS && (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u);
+    bool from_mask = dim < MASK_DIMS && (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u) &&
+                     !(dim < 2u && g_seed_jitter);
     if (P.mask_mode != MASK_MODE_NONE && from_mask) {
         uint n = P.mask_size;
         uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) + dim * uvec2(37u, 71u)) % n;
@@ -301,6 +308,11 @@ bool path_step(uvec2 px, uint seed, uint index, uint s, inout PathState st) {
     }
     BrdfInput m = material_at(mat, srf.uv);
     if (st.b == 0u) g_albedo0 = m.base;
+#if TRACE_MASK
+    if (st.b == 0u)
+        g_textured0 = g_textured0 || (TRACE_TEXTURES != 0 &&
+                                      max(mat.base_color_tex, max(mat.emissive_tex, mat.mr_tex)) >= 0);
+#endif
     if (st.b == P.max_bounces) return true;
     uint d = 2u + st.b * DIMS_PER_BOUNCE;
     vec3 wo = -st.ray.dir;

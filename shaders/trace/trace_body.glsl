@@ -63,6 +63,13 @@ layout(set = 0, binding = 10, scalar) buffer Estimate { vec4 estimate[]; };
 // it before the pass and turns values near llvmpipe's limit into an error); from
 // TRACE_STATUS_LOOPS on, the loop statistics (TRACE_LOOP_STATS).
 layout(set = 0, binding = 11, scalar) buffer Status { uint trace_status[]; };
+#if TRACE_MASK
+// Per pixel, PRIMARY_* bits of its latest primary hit: read at the start
+// (TRACE_FLAG_SEED_JITTER_ON_TEXTURES), rewritten at the end (TRACE_FLAG_RECORD_PRIMARY), by
+// this pixel's invocation only. Only the mask
+// variants have it (the others' code, which keys the reference cache, stays as it was).
+layout(set = 0, binding = 13, scalar) buffer PrimaryFlags { uint primary_flags[]; };
+#endif
 
 // llvmpipe's loop limiter: one counter per SIMD batch (subgroup), shared by all loops, that
 // ends every loop silently after 65535 iterations of the batch (an iteration in which any
@@ -140,6 +147,9 @@ void main() {
     // Keeps every binding in every variant, so all variants share one binding table.
     int keep = imageSize(scene_textures).x + imageSize(scene_texels).x + mask.length() +
                hbo19_keys.length();
+#if TRACE_MASK
+    keep += primary_flags.length();
+#endif
     // Each 8 consecutive invocations (one SIMD batch of llvmpipe's 256-bit vectors) take a
     // 4x2 block of the group's pixels rather than 8 pixels of a row: closer rays diverge less
     // in the traversal loops (measured 1.7% faster on the Cornell box). Needs TRACE_GROUP_X
@@ -166,8 +176,18 @@ void main() {
     }
 #endif
     seed = (P.flags & TRACE_FLAG_SALT_FRAME) != 0u ? hash3(seed, P.frame, 0x5a17u) : seed;
+#if TRACE_MASK
+    uint flag_index = px.y * P.width + px.x;
+    g_textured0 = false;
+    g_seed_jitter = (P.flags & TRACE_FLAG_SEED_JITTER_ON_TEXTURES) != 0u &&
+                    (primary_flags[flag_index] & PRIMARY_TEXTURED) != 0u;
+#endif
     uint s0 = P.sample_index, count = P.sample_count;
     vec3 l = trace_paths(px, seed, s0, count) / float(count);
+#if TRACE_MASK
+    if ((P.flags & TRACE_FLAG_RECORD_PRIMARY) != 0u && inside)
+        primary_flags[flag_index] = g_textured0 ? PRIMARY_TEXTURED : 0u;
+#endif
     // Running mean over this frame's dispatches (see TraceParams::sample_index).
     uint o = px.y * P.width + px.x;
     vec3 prev = estimate[o].rgb;

@@ -31,6 +31,8 @@ mod headers;
 #[cfg(test)]
 mod history;
 #[cfg(test)]
+mod jitter;
+#[cfg(test)]
 mod lights;
 #[cfg(test)]
 mod lights_twin;

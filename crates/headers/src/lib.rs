@@ -21,6 +21,15 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("TRACE_FLAG_DEMODULATE", params::TRACE_FLAG_DEMODULATE)
                 .constant("TRACE_FLAG_MASK_ANCHORED", params::TRACE_FLAG_MASK_ANCHORED)
                 .constant(
+                    "TRACE_FLAG_RECORD_PRIMARY",
+                    params::TRACE_FLAG_RECORD_PRIMARY,
+                )
+                .constant(
+                    "TRACE_FLAG_SEED_JITTER_ON_TEXTURES",
+                    params::TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
+                )
+                .constant("PRIMARY_TEXTURED", params::PRIMARY_TEXTURED)
+                .constant(
                     "TRACE_FLAG_MASK_DIMS_SHIFT",
                     params::TRACE_FLAG_MASK_DIMS_SHIFT,
                 )

@@ -141,6 +141,19 @@ pub const TRACE_FLAG_DEMODULATE: u32 = 8;
 /// screen position that follows the pixel's surface, `permute/follow_anchors`) instead of at
 /// the pixel, so a surface keeps its mask values while the image moves.
 pub const TRACE_FLAG_MASK_ANCHORED: u32 = 16;
+/// `TraceParams::flags` (mask variants): each pixel records `PRIMARY_*` bits of its primary
+/// hit in `primary_flags`, for the next frame's `TRACE_FLAG_SEED_JITTER_ON_TEXTURES`.
+pub const TRACE_FLAG_RECORD_PRIMARY: u32 = 32;
+/// `TraceParams::flags` (mask variants): a pixel whose recorded primary hit (the previous
+/// frame's) was on a textured material takes its anti-aliasing jitter from its seed even
+/// where the mask drives the jitter. At a texture's detail the jitter's error follows the
+/// texture's gradient, which changes sign from texel to texel: that modulation moves a blue
+/// mask's high-frequency error down to low frequencies, while the seeds' block nets and the
+/// sort act on the error itself. At a depth edge the gradient keeps its sign and the mask's
+/// jitter stays blue.
+pub const TRACE_FLAG_SEED_JITTER_ON_TEXTURES: u32 = 64;
+/// `primary_flags` bit: the primary hit's material has a texture.
+pub const PRIMARY_TEXTURED: u32 = 1;
 /// `TraceParams::flags`: bits from this one up select which of the first `MASK_DIMS`
 /// dimensions a mask mode drives (bit d: dimension d); none set: all of them.
 pub const TRACE_FLAG_MASK_DIMS_SHIFT: u32 = 16;

@@ -96,6 +96,9 @@ pub struct Renderer {
     current: usize,
     initial_seeds: Vec<u32>,
     estimate: Buffer,
+    /// `PRIMARY_*` bits of each pixel's latest primary hit (the trace pass reads and rewrites
+    /// them with `TRACE_FLAG_SEED_JITTER_ON_TEXTURES`); zero after a reset.
+    primary_flags: Buffer,
     trace_status: Buffer,
     /// Path vertices per trace dispatch (adapted to the counted loop iterations).
     dispatch_vertices: u32,
@@ -179,6 +182,11 @@ impl Renderer {
             current: 0,
             initial_seeds: initial,
             estimate: local("frame.estimate", pixels * 16)?,
+            primary_flags: Buffer::upload(
+                dev,
+                "frame.primary_flags",
+                &vec![0u32; pixels as usize],
+            )?,
             trace_status: local("frame.trace_status", 4 * TRACE_STATUS_WORDS as u64)?,
             dispatch_vertices: blueshift_trace::TRACE_FIRST_DISPATCH_VERTICES,
             per_dispatch: 0,
@@ -254,6 +262,7 @@ impl Renderer {
         for s in &mut self.seeds {
             s.write(0, &self.initial_seeds)?;
         }
+        self.primary_flags.write(0, &vec![0u32; self.pixels()])?;
         self.current = 0;
         self.frame = 0;
         self.accumulated = 0;

@@ -370,6 +370,23 @@ impl Method {
         }
     }
 
+    /// The trace pass's `TRACE_FLAG_RECORD_PRIMARY` and `TRACE_FLAG_SEED_JITTER_ON_TEXTURES`
+    /// bits: a method whose jitter comes from the mask records which pixels show a textured
+    /// surface, and while the view moves those pixels take the seed's jitter instead (on
+    /// textures the mask's shifted jitter is worse than the seeds' sorted block nets). With a
+    /// still view the mask's rotated jitter stays everywhere: each pixel's jitter then runs
+    /// through R2 points, which converges on textures too.
+    pub fn primary_flags(self, moving: bool) -> u32 {
+        use blueshift_layout::params::{
+            TRACE_FLAG_RECORD_PRIMARY, TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
+        };
+        match (self.mask_dims(moving) & 0b11 != 0, moving) {
+            (false, _) => 0,
+            (true, false) => TRACE_FLAG_RECORD_PRIMARY,
+            (true, true) => TRACE_FLAG_RECORD_PRIMARY | TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
+        }
+    }
+
     /// Whether the pairs' checkerboard phase is a hash bit of the frame rather than its parity
     /// (`permute::pair_phase`): with history keys an alternating phase that a 1 px/frame pan
     /// cancels feeds a bias back through the history means.

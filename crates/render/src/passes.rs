@@ -55,6 +55,7 @@ impl Renderer {
             mask,
             &self.masks.keys,
             &self.estimate,
+            &self.primary_flags,
             &self.trace_status,
             self.dispatch_vertices,
             self.cfg.loop_stats,

@@ -20,6 +20,24 @@ impl Renderer {
     pub fn read_estimate(&self) -> Result<Vec<[f32; 4]>> {
         Ok(self.estimate.read::<[f32; 4]>()?[..self.pixels()].to_vec())
     }
+    /// `PRIMARY_*` bits of each pixel's latest primary hit (kept only by methods that take
+    /// the jitter from the seed on textured surfaces; zero otherwise).
+    pub fn read_primary_flags(&self) -> Result<Vec<u32>> {
+        Ok(self.primary_flags.read::<u32>()?[..self.pixels()].to_vec())
+    }
+    /// Overwrites the `PRIMARY_*` bits the next frame's trace pass reads (for tests: which
+    /// pixels take their jitter from the seed).
+    pub fn write_primary_flags(&mut self, flags: &[u32]) -> Result<()> {
+        if flags.len() != self.pixels() {
+            return Err(crate::RenderError::Invalid(format!(
+                "{} primary flags for {} pixels",
+                flags.len(),
+                self.pixels()
+            )));
+        }
+        self.finish_frames()?;
+        Ok(self.primary_flags.write(0, flags)?)
+    }
     /// The running mean since the last reset or camera move.
     pub fn read_accum(&self) -> Result<Vec<[f32; 4]>> {
         Ok(self.accum.read::<[f32; 4]>()?[..self.pixels()].to_vec())
@@ -103,7 +121,7 @@ impl Renderer {
     pub fn screen(&self) -> Screen {
         self.screen
     }
-    fn pixels(&self) -> usize {
+    pub(crate) fn pixels(&self) -> usize {
         self.cfg.width as usize * self.cfg.height as usize
     }
 }

@@ -17,7 +17,9 @@ impl Renderer {
         let m = c.method;
         let n = self.assets.n;
         let moving = self.moving();
-        let flags = trace_flags(c) | m.mask_dims(moving) << TRACE_FLAG_MASK_DIMS_SHIFT;
+        let flags = trace_flags(c)
+            | m.mask_dims(moving) << TRACE_FLAG_MASK_DIMS_SHIFT
+            | m.primary_flags(moving);
         let mask_mode = mask_mode_of(c, moving);
         // The mode alone says which mask and offsets: whichever method chose it.
         let (mask_size, mask_frames, off) = match mask_mode {
@@ -195,6 +197,8 @@ mod tests {
                     assert_eq!(dims >> MASK_DIMS, 0, "{name}");
                     assert_eq!(dims & 3, 3, "{name}: the jitter comes first");
                 }
+                // Textured pixels' jitter is chosen only where the mask drives the jitter.
+                assert_eq!(m.primary_flags(moving) != 0, dims & 3 != 0, "{name}");
             }
         }
         assert!(some > 0, "no preset leaves dimensions to the mask");

@@ -112,7 +112,8 @@ pub(crate) fn scene_resources<'a>(
     ]
 }
 
-/// Bindings of every path-tracer variant (and of the all-runtime `trace/trace`).
+/// Bindings of every path-tracer variant (and of the all-runtime `trace/trace`); the mask
+/// variants add [`MASK_TRACE_BINDING`].
 pub const TRACE_BINDINGS: [Binding; 13] = [
     Binding::image(0, "scene_nodes"),
     Binding::image(1, "scene_triangles"),
@@ -128,6 +129,17 @@ pub const TRACE_BINDINGS: [Binding; 13] = [
     Binding::storage(11, "trace_status"),
     Binding::storage(12, "hbo19_keys"),
 ];
+/// The mask variants' per-pixel flags of the primary hit (`TRACE_FLAG_SEED_JITTER_ON_TEXTURES`).
+pub const MASK_TRACE_BINDING: Binding = Binding::storage(13, "primary_flags");
+
+/// The bindings of `variant`.
+pub fn trace_bindings(variant: &TraceVariant) -> Vec<Binding> {
+    let mut b = TRACE_BINDINGS.to_vec();
+    if variant.mask {
+        b.push(MASK_TRACE_BINDING);
+    }
+    b
+}
 
 impl TracePass {
     pub fn new(dev: &Device) -> Self {
@@ -151,6 +163,7 @@ impl TracePass {
         mask: &Buffer,
         keys: &Buffer,
         estimate: &Buffer,
+        primary_flags: &Buffer,
         status: &Buffer,
         vertices: u32,
         loop_stats: bool,
@@ -159,7 +172,7 @@ impl TracePass {
         let dev = &self.dev;
         let pipeline = self.pipelines.get_or_create(variant, |v| {
             let push = size_of::<TraceParams>();
-            blueshift_shaders::pipeline(dev, &v.shader(), &TRACE_BINDINGS, push)
+            blueshift_shaders::pipeline(dev, &v.shader(), &trace_bindings(&v), push)
         })?;
         let per_dispatch = samples_per_dispatch(vertices, p.max_bounces).min(p.spp);
         for first in (0..p.spp).step_by(per_dispatch as usize) {
@@ -168,8 +181,8 @@ impl TracePass {
                 sample_count: per_dispatch.min(p.spp - first),
                 ..*p
             };
-            let bufs = [seeds, mask, estimate, status, keys];
-            Self::trace_one(rec, pipeline, &p, scene, images, bufs)?;
+            let bufs = [seeds, mask, estimate, status, keys, primary_flags];
+            Self::trace_one(rec, pipeline, &p, scene, images, bufs, variant.mask)?;
         }
         Ok(per_dispatch)
     }
@@ -180,8 +193,14 @@ impl TracePass {
         p: &TraceParams,
         s: &SceneBuffers,
         i: &SceneImages,
-        [seeds, mask, estimate, status, keys]: [&Buffer; 5],
+        [seeds, mask, estimate, status, keys, primary_flags]: [&Buffer; 6],
+        mask_variant: bool,
     ) -> Result<()> {
+        let flags: &[(&str, Res)] = if mask_variant {
+            &[("primary_flags", primary_flags.into())]
+        } else {
+            &[]
+        };
         rec.dispatch(
             pipeline,
             &[
@@ -193,6 +212,7 @@ impl TracePass {
                     ("trace_status", status.into()),
                     ("hbo19_keys", keys.into()),
                 ],
+                flags,
             ]
             .concat(),
             bytemuck::bytes_of(p),
