@@ -96,8 +96,9 @@ pub struct Renderer {
     current: usize,
     initial_seeds: Vec<u32>,
     estimate: Buffer,
-    /// `PRIMARY_*` bits of each pixel's latest primary hit (the trace pass reads and rewrites
-    /// them with `TRACE_FLAG_SEED_JITTER_ON_TEXTURES`); zero after a reset.
+    /// `PRIMARY_*` bits of each pixel's latest primary hit (the trace pass's mask variants
+    /// write them with `TRACE_FLAG_RECORD_PRIMARY` and read them with
+    /// `TRACE_FLAG_SEED_JITTER_ON_TEXTURES`); zero after a reset.
     primary_flags: Buffer,
     trace_status: Buffer,
     /// Path vertices per trace dispatch (adapted to the counted loop iterations).
