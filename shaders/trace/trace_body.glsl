@@ -66,7 +66,8 @@ layout(set = 0, binding = 11, scalar) buffer Status { uint trace_status[]; };
 #if TRACE_MASK
 // Per pixel, PRIMARY_* bits of its latest primary hit: read at the start
 // (TRACE_FLAG_SEED_JITTER_ON_TEXTURES), rewritten at the end (TRACE_FLAG_RECORD_PRIMARY), by
-// this pixel's invocation only. Only the mask
+// this pixel's invocation only. When a frame's samples take several dispatches, the later
+// ones read what the earlier ones of the same frame wrote (this frame's hits: fresher). Only the mask
 // variants have it (the others' code, which keys the reference cache, stays as it was).
 layout(set = 0, binding = 13, scalar) buffer PrimaryFlags { uint primary_flags[]; };
 #endif
