@@ -53,7 +53,7 @@ pub use slots::{Completed, FRAMES_IN_FLIGHT, FrameOutput};
 pub use stats::{FrameStats, LoopCount, LoopStats};
 pub use trace_params::r2_offset;
 
-use blueshift_device::{Buffer, Device, MemoryLocation};
+use blueshift_device::{Buffer, Device, MemoryLocation, Recorder};
 use blueshift_layout::params::TRACE_STATUS_WORDS;
 pub use blueshift_layout::params::TraceLoop;
 use blueshift_permute::{PermutePasses, Screen};
@@ -164,6 +164,8 @@ impl Renderer {
         let (words, keys_spp) = key_words(&cfg, assets)?;
         let pixels = cfg.width as u64 * cfg.height as u64;
         let local = |name: &str, bytes: u64| Buffer::new(dev, name, bytes, MemoryLocation::GpuOnly);
+        let primary_flags = local("frame.primary_flags", pixels * 4)?;
+        zero(dev, &primary_flags)?;
         let seeds = [
             Buffer::upload(dev, "frame.seeds.a", &initial)?,
             Buffer::upload(dev, "frame.seeds.b", &initial)?,
@@ -183,11 +185,7 @@ impl Renderer {
             current: 0,
             initial_seeds: initial,
             estimate: local("frame.estimate", pixels * 16)?,
-            primary_flags: Buffer::upload(
-                dev,
-                "frame.primary_flags",
-                &vec![0u32; pixels as usize],
-            )?,
+            primary_flags,
             trace_status: local("frame.trace_status", 4 * TRACE_STATUS_WORDS as u64)?,
             dispatch_vertices: blueshift_trace::TRACE_FIRST_DISPATCH_VERTICES,
             per_dispatch: 0,
@@ -263,7 +261,7 @@ impl Renderer {
         for s in &mut self.seeds {
             s.write(0, &self.initial_seeds)?;
         }
-        self.primary_flags.write(0, &vec![0u32; self.pixels()])?;
+        zero(&self.dev, &self.primary_flags)?;
         self.current = 0;
         self.frame = 0;
         self.accumulated = 0;
@@ -366,4 +364,11 @@ impl Renderer {
     pub fn restart_accumulation(&mut self) {
         self.accumulated = 0;
     }
+}
+
+/// Fills `buffer` with zeros on the GPU (no host copy), waiting for it.
+fn zero(dev: &Device, buffer: &Buffer) -> Result<()> {
+    Ok(Recorder::one_shot(dev, "frame.zero", |rec| {
+        rec.fill_buffer(buffer, 0)
+    })?)
 }

@@ -147,6 +147,9 @@ pub enum Method {
 /// measured best on the bundled scenes (docs/experiments.md).
 pub const GRID_BLOCK: u32 = 8;
 
+/// The camera jitter's sample dimensions (0 and 1), as a `Method::mask_dims` bit set.
+const JITTER_DIMS: u32 = 0b11;
+
 const PAPER: Permutation = Permutation {
     key: Key::Raw,
     grouping: Grouping::Blocks,
@@ -358,7 +361,7 @@ impl Method {
     /// all of the first `MASK_DIMS`, and say so with their own mask mode).
     pub fn mask_dims(self, moving: bool) -> u32 {
         use blueshift_layout::params::DIMS_PER_BOUNCE;
-        let jitter = 0b11;
+        let jitter = JITTER_DIMS;
         // Vertex 0's BSDF sample: lobe choice, direction (2) and Russian roulette, after its
         // three light dimensions (see `DIMS_PER_BOUNCE`).
         let bsdf = ((1 << (DIMS_PER_BOUNCE - 3)) - 1) << (2 + 3);
@@ -380,10 +383,12 @@ impl Method {
         use blueshift_layout::params::{
             TRACE_FLAG_RECORD_PRIMARY, TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
         };
-        match (self.mask_dims(moving) & 0b11 != 0, moving) {
-            (false, _) => 0,
-            (true, false) => TRACE_FLAG_RECORD_PRIMARY,
-            (true, true) => TRACE_FLAG_RECORD_PRIMARY | TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
+        if self.mask_dims(moving) & JITTER_DIMS == 0 {
+            0
+        } else if moving {
+            TRACE_FLAG_RECORD_PRIMARY | TRACE_FLAG_SEED_JITTER_ON_TEXTURES
+        } else {
+            TRACE_FLAG_RECORD_PRIMARY
         }
     }
 

@@ -13,7 +13,7 @@ pub use error::{Result, TraceError};
 pub use gbuffer::{GBufferPass, gbuffer_cpu};
 pub use images::SceneImages;
 pub use pass::{
-    LLVMPIPE_LOOP_LIMIT, MASK_TRACE_BINDING, TRACE_BINDINGS, TRACE_DISPATCH_ITERATIONS,
-    TRACE_FIRST_DISPATCH_VERTICES, TRACE_LOOP_GUARD, TRACE_MAX_DISPATCH_VERTICES, TracePass,
-    check_loop_guard, next_dispatch_vertices, samples_per_dispatch, trace_bindings, trace_variant,
+    LLVMPIPE_LOOP_LIMIT, TRACE_BINDINGS, TRACE_DISPATCH_ITERATIONS, TRACE_FIRST_DISPATCH_VERTICES,
+    TRACE_LOOP_GUARD, TRACE_MAX_DISPATCH_VERTICES, TracePass, check_loop_guard,
+    next_dispatch_vertices, samples_per_dispatch, trace_variant,
 };
