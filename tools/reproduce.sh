@@ -4,8 +4,13 @@
 # curated figures in docs/figures/.
 #
 #   bash tools/reproduce.sh               all runs (about 10-25 minutes each on 2 CPU cores)
-#   bash tools/reproduce.sh --only NAME   one run: motion, motion-textured, still-256, cornell or
-#                                         textured
+#   bash tools/reproduce.sh --only NAME   one run: motion, motion-textured, motion-speeds,
+#                                         motion-edges, still-256, cornell or textured
+#   bash tools/reproduce.sh --references  only fill the reference cache for the runs (or the
+#                                         --only one): one `white` sequence each, docs untouched.
+#                                         On a new machine the references are most of the time
+#                                         of a run (a 64-frame strafe at 8 bounces: about 10 min)
+#   bash tools/reproduce.sh --bin B       use the binary B instead of building a release one
 #   bash tools/reproduce.sh --reuse       no eval: rewrite the tables from the reports already
 #                                         in out/results/NAME/ (e.g. after editing the docs)
 #   bash tools/reproduce.sh --quick       smoke run: 12 frames, one sequence; writes
@@ -43,15 +48,19 @@ FIGURES=(
   "textured|pan-1_b1_spp1_frames.png|textured-pan_frames.png"
 )
 
-usage() { sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; }
 
 quick=0
 reuse=0
+references=0
 only=""
+bin=""
 while (($#)); do
   case "$1" in
     --quick) quick=1 ;;
     --reuse) reuse=1 ;;
+    --references) references=1 ;;
+    --bin) [ $# -ge 2 ] || { echo "reproduce: --bin needs a path" >&2; exit 2; }; bin="$2"; shift ;;
     --only) [ $# -ge 2 ] || { echo "reproduce: --only needs a NAME" >&2; exit 2; }; only="$2"; shift ;;
     --only=*) only="${1#--only=}" ;;
     -h | --help) usage; exit 0 ;;
@@ -59,6 +68,15 @@ while (($#)); do
   esac
   shift
 done
+
+if ((reuse && references)); then
+  echo "reproduce: --reuse runs no eval, --references only evals: choose one" >&2
+  exit 2
+fi
+if [ -n "$bin" ] && [ ! -x "$bin" ]; then
+  echo "reproduce: --bin: '$bin' is not an executable file" >&2
+  exit 2
+fi
 
 names=()
 for r in "${RUNS[@]}"; do names+=("${r%%|*}"); done
@@ -96,7 +114,7 @@ for m in begin end; do
   done
 done
 
-if ((!reuse)); then
+if ((!reuse)) && [ -z "$bin" ]; then
   source scripts/setup.sh
   cargo build --release --locked -p blueshift
   bin="$CARGO_TARGET_DIR/release/blueshift"
@@ -256,6 +274,22 @@ selected=()
 for r in "${RUNS[@]}"; do
   if [ -z "$only" ] || [ "${r%%|*}" = "$only" ]; then selected+=("$r"); fi
 done
+
+# --references: each run's cameras, scenes and bounces with `white` alone and one sequence,
+# which renders (and caches) every reference the full run will read.
+if ((references)); then
+  for r in "${selected[@]}"; do
+    name="${r%%|*}"
+    args="$(sed -E 's/--methods [^ ]+/--methods white/; s/--sequences [0-9]+/--sequences 1/' <<< "${r#*|}")"
+    scratch="$(mktemp -d out/results/.$name.refs.XXXXXX)"
+    tmpfiles+=("$scratch")
+    echo "== $name (references): blueshift eval $args $common"
+    # shellcheck disable=SC2086 # the argument lists are word-split on purpose
+    "$bin" eval $args $common --out "$scratch"
+  done
+  echo "reproduce: references cached for: ${selected[*]%%|*}"
+  exit 0
+fi
 
 # Every eval first: the docs are read only once they are done, so edits made to them during a
 # long run are kept.
