@@ -59,9 +59,21 @@ pub fn same_bits(a: &[[f32; 4]], b: &[[f32; 4]]) -> bool {
             .all(|(p, q)| p.map(f32::to_bits) == q.map(f32::to_bits))
 }
 
+/// Serialises creating and destroying instances and devices across the test threads (the
+/// tests themselves still run in parallel). The loader, the validation layer and lavapipe keep
+/// process-wide state there; a cold CI run once died with SIGSEGV while tests were creating
+/// and dropping devices in parallel (not reproduced in dozens of reruns), and this rules races
+/// in those calls out.
+static LIFECYCLE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn lifecycle() -> std::sync::MutexGuard<'static, ()> {
+    // A test that panicked while holding it poisons nothing the next one needs.
+    LIFECYCLE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// A validated device plus a recorder. Panics on drop if validation reported anything.
 pub struct Gpu {
-    instance: Instance,
+    instance: Option<Instance>,
     pub dev: Option<Device>,
     pub rec: Option<Recorder>,
 }
@@ -70,6 +82,7 @@ impl Gpu {
     /// Creates the device with validation on. Panics with the device layer's message (which
     /// names the apt package to install) when there is no Vulkan device or no validation layer.
     pub fn new() -> Self {
+        let _lock = lifecycle();
         let instance = Instance::new(&InstanceDesc {
             validation: true,
             extensions: vec![],
@@ -79,7 +92,7 @@ impl Gpu {
             .unwrap_or_else(|e| panic!("GPU tests need a Vulkan device: {e}"));
         let rec = Recorder::new(&dev, "test").expect("recorder");
         Self {
-            instance,
+            instance: Some(instance),
             dev: Some(dev),
             rec: Some(rec),
         }
@@ -130,9 +143,15 @@ impl Default for Gpu {
 
 impl Drop for Gpu {
     fn drop(&mut self) {
+        let lock = lifecycle();
         self.rec.take();
         self.dev.take();
-        let msgs = self.instance.validation_log().messages();
+        let msgs = self
+            .instance
+            .take()
+            .map(|i| i.validation_log().messages())
+            .unwrap_or_default();
+        drop(lock);
         if !msgs.is_empty() && !std::thread::panicking() {
             panic!("{} validation message(s):\n{}", msgs.len(), msgs.join("\n"));
         }
