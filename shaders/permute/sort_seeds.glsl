@@ -28,7 +28,9 @@
 //                 padded screen, whose off-screen pixels keep their place before the move
 //   SORT_CYCLE    1: first the point cycle: record each pixel's (seed, key minus running
 //                 mean) in the slot of this frame's phase, then rank the seeds and keys of the
-//                 next phase's slot (once written) against mask slice SortParams::mask_layer
+//                 next phase's slot (once written) against mask slice SortParams::mask_layer;
+//                 with SortParams::cycle_sample_keys the seeds rank by their next light
+//                 sample's position instead of those keys
 // With the first four 0 this is the paper's sorting and nothing else.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
@@ -36,6 +38,9 @@
 #include "generated/params.glsl"
 #include "generated/sort_network.glsl"
 #include "sort_blocks.glsl"
+#if SORT_CYCLE
+#include "sampling.glsl"
+#endif
 
 #if SORT_SLOTS == 16
 #define SORT_ROW 4
@@ -255,6 +260,21 @@ void main() {
 #endif
 #if SORT_CYCLE
     uint pixels = p.width * p.height;
+    // The block net's point the seed takes at the next phase, in the first vertex's light
+    // sample dimensions, as a Morton code (CPU twin: blueshift_layout::params::sample_key_code).
+#define SPREAD12(v) { \
+        v &= 0xFFFu; \
+        v = (v | (v << 8u)) & 0x00FF00FFu; \
+        v = (v | (v << 4u)) & 0x0F0F0F0Fu; \
+        v = (v | (v << 2u)) & 0x33333333u; \
+        v = (v | (v << 1u)) & 0x55555555u; \
+    }
+#define SAMPLE_KEY(s) { \
+        uint sx = block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM) >> 20u; \
+        uint sy = block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM + 1u) >> 20u; \
+        SPREAD12(sx) SPREAD12(sy) \
+        val[s] = float(sx | (sy << 1u)); \
+    }
 #define LOAD_CYCLE(s, at) { \
         float k = p.cycle_mean_count > 0u ? val[s] - accum[at].w : val[s]; \
         uvec2 rec = uvec2(seed[s], floatBitsToUint(k)); \
@@ -265,6 +285,7 @@ void main() {
             k = uintBitsToFloat(h.y); \
         } \
         val[s] = k; \
+        if (p.cycle_sample_keys != 0u) SAMPLE_KEY(s) \
     }
 #else
 #define LOAD_CYCLE(s, at)

@@ -17,8 +17,9 @@ fn volume(n: u32, t: u32, rng: &mut Lcg) -> Vec<u32> {
 /// The sorting pass with the point cycle on the way in, frame after frame, against the CPU
 /// twins (cycle_keys_cpu then sort_seeds_cpu): the seeds it leaves and the history slots agree
 /// bit for bit, over more than a cycle (so the history slots are written, then read back), with ties and NaN keys,
-/// with and without running means, on screens with more and with fewer pixels than a mask
-/// slice.
+/// with and without running means, ranking the recorded keys or (every fourth frame, as
+/// while the view moves) the seeds' next light samples, on screens with more and with fewer
+/// pixels than a mask slice.
 #[test]
 fn cycle_keys_and_sort_match_cpu_over_cycles() {
     let mut gpu = Gpu::new();
@@ -58,7 +59,7 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
                 .write(0, &means.iter().map(|&m| [m, m, m, m]).collect::<Vec<_>>())
                 .unwrap();
             let count = if frame % 3 == 0 { 0 } else { frame as u32 };
-            let cp = sc.cycle_params(frame, n, 4, count);
+            let cp = sc.cycle_params(frame, n, 4, count, frame % 4 == 1);
             let sp = blueshift_permute::SortParams {
                 mask_size: n,
                 ..sc.sort_params(8, (0, 0)).unwrap()
@@ -141,6 +142,69 @@ fn sort_cycle_seeds_stay_in_their_blocks() {
         assert_eq!(block_sets(&seeds), want);
     }
     assert_ne!(r.read_seeds().unwrap(), init, "seeds never moved");
+}
+
+/// While the view moves, the renderer's sort-cycle ranks each block's seeds by where their
+/// next light sample lands: in every 8x8 block, a pixel with a lower mask rank (the slice of
+/// the next frame) holds a seed whose block-net point at the next phase has a lower or equal
+/// Morton code, computed here from the sampler and the mask alone. With the view still again,
+/// the seeds rank by their recorded keys, and that order no longer holds everywhere.
+#[test]
+fn a_moving_view_ranks_seeds_by_their_next_light_sample() {
+    let gpu = Gpu::new();
+    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
+    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
+    let (w, h) = (40u32, 24u32);
+    let cfg = RenderConfig {
+        bounces: 1,
+        method: Method::SORT_CYCLE,
+        ..RenderConfig::new(w, h)
+    };
+    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let stride =
+        r.initial_seeds().len() / Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
+    let samples = blueshift_sampling::Samples::default();
+    let (n, frames) = (assets.stbn_n, assets.stbn_frames);
+    // Pairs of pixels of one block whose seeds' next light samples are out of the mask's
+    // order, after the frame `traced` (0-based) was rendered.
+    let out_of_order = |seeds: &[u32], traced: u64| {
+        let next = traced + 1;
+        let layer = (next % u64::from(frames)) as usize * (n * n) as usize;
+        let phase = (next % u64::from(CYCLE_FRAMES)) as u32;
+        let at = |x: u32, y: u32| {
+            let rank = assets.stbn[layer + ((y % n) * n + x % n) as usize];
+            let seed = seeds[y as usize * stride + x as usize];
+            (rank, blueshift_permute::sample_key(&samples, seed, phase))
+        };
+        let mut bad = 0;
+        for (bx, by) in (0..w.div_ceil(8)).flat_map(|bx| (0..h.div_ceil(8)).map(move |by| (bx, by)))
+        {
+            let px: Vec<(u32, f32)> = (0..64)
+                .map(|i| (bx * 8 + i % 8, by * 8 + i / 8))
+                .filter(|&(x, y)| x < w && y < h)
+                .map(|(x, y)| at(x, y))
+                .collect();
+            for a in &px {
+                bad += px.iter().filter(|b| a.0 < b.0 && a.1 > b.1).count();
+            }
+        }
+        bad
+    };
+    let mut cam = s.camera_or_default();
+    r.render_frame().unwrap();
+    for traced in 1..2 * u64::from(CYCLE_FRAMES) + 3 {
+        cam.position.x += 0.01;
+        r.set_camera(cam);
+        r.render_frame().unwrap();
+        let seeds = r.read_seeds().unwrap();
+        assert_eq!(out_of_order(&seeds, traced), 0, "moving frame {traced}");
+    }
+    let mut still_disorder = 0;
+    for traced in 2 * u64::from(CYCLE_FRAMES) + 3..3 * u64::from(CYCLE_FRAMES) + 3 {
+        r.render_frame().unwrap();
+        still_disorder += out_of_order(&r.read_seeds().unwrap(), traced);
+    }
+    assert!(still_disorder > 0, "a still view ranked by the samples too");
 }
 
 /// A still view reuses the G-buffer and the surface classes: after the first frame neither

@@ -341,7 +341,8 @@ fn every_sort_variant_matches_cpu() {
     let classes_b = upload("variant.classes", &classes);
     let history_b = Buffer::from_slice(&dev, "variant.history", &history).unwrap();
     // The point cycle: a two-slice volume (the mask is slice 1), running means, and a written
-    // next-phase slot holding each pixel's own seed with a random key.
+    // next-phase slot holding each pixel's own seed with a random key; the seeds rank by their
+    // next light sample (the recorded keys are covered over whole cycles in cycle.rs).
     let volume: Vec<u32> = rng.perm(n * n).into_iter().chain(mask.clone()).collect();
     let volume_b = upload("variant.volume", &volume);
     let means: Vec<f32> = (0..px).map(|_| (rng.next_u32() % 7) as f32 * 0.5).collect();
@@ -361,6 +362,7 @@ fn every_sort_variant_matches_cpu() {
         mask_size: n,
         mask_layer: 1,
         mean_count: 5,
+        sample_keys: 1,
     };
     let mut cycle_history = vec![[0u32; 2]; CYCLE_FRAMES as usize * px];
     for (i, slot) in cycle_history[4 * px..5 * px].iter_mut().enumerate() {

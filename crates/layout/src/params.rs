@@ -36,12 +36,14 @@ gpu_struct! {
         pub count_skew: u32,
         /// The point cycle of `sort-cycle`, for the sorting pass that runs it on the way in
         /// (`CycleParams` holds the meaning of each): the mask slice of the next frame, the
-        /// phases, whether the next phase's slot is written, frames in the running mean.
+        /// phases, whether the next phase's slot is written, frames in the running mean,
+        /// whether the seeds rank by their next light sample.
         pub mask_layer: u32,
         pub cycle_phase: u32,
         pub cycle_next_phase: u32,
         pub cycle_next_valid: u32,
         pub cycle_mean_count: u32,
+        pub cycle_sample_keys: u32,
     }
 }
 
@@ -66,6 +68,12 @@ gpu_struct! {
         /// estimate's key minus that mean, an estimate of the seed's error rather than of the
         /// image, which carries over to the other pixels of the block.
         pub mean_count: u32,
+        /// 1: rank the block's seeds by where their next light sample lands
+        /// ([`sample_key_code`] of block-net dimensions [`SAMPLE_KEY_DIM`] and the next, at
+        /// the next phase) instead of by their recorded keys. While the view moves the recorded
+        /// keys belong to what the block showed a cycle ago; the sample's own position still
+        /// spreads the block's net over the mask, so neighbours take distant light samples.
+        pub sample_keys: u32,
     }
 }
 
@@ -73,6 +81,25 @@ gpu_struct! {
 /// of its Owen-scrambled Sobol sequence (indices 0..CYCLE_FRAMES, a (0,4,2)-net), so the
 /// estimate it gave CYCLE_FRAMES frames ago predicts the next one (docs/algorithm.md).
 pub const CYCLE_FRAMES: u32 = 16;
+
+/// The first dimension of the first vertex's light sample (after the two jitter dimensions):
+/// with the next, one pair of the block net, whose position ranks the seeds under motion
+/// (`CycleParams::sample_keys`).
+pub const SAMPLE_KEY_DIM: u32 = 2;
+
+/// The sample key of a 2D point from its two 32-bit fractions: the top 12 bits of each
+/// interleaved along a Morton curve (x in the even bits), so that points close in the plane
+/// get close keys; 24 bits, exact as an f32 (the GLSL `sample_key_code`).
+pub fn sample_key_code(x: u32, y: u32) -> u32 {
+    fn spread(v: u32) -> u32 {
+        let mut v = v & 0xFFF;
+        v = (v | (v << 8)) & 0x00FF_00FF;
+        v = (v | (v << 4)) & 0x0F0F_0F0F;
+        v = (v | (v << 2)) & 0x3333_3333;
+        (v | (v << 1)) & 0x5555_5555
+    }
+    spread(x >> 20) | (spread(y >> 20) << 1)
+}
 
 /// The sorting pass counts the classes of at least SKEW_MIN_PIXELS pixels in a block, and
 /// those among them whose keys have a sample skewness |g| > SKEW_LIMIT: antithetic pairs
@@ -324,5 +351,39 @@ mod tests {
         let names: std::collections::HashSet<_> =
             TraceLoop::ALL.iter().map(|l| l.glsl_name()).collect();
         assert_eq!(names.len(), TraceLoop::ALL.len());
+    }
+
+    /// The sample key is a Morton curve on the 12-bit grid: a bijection onto 24 bits, and
+    /// every aligned 2^k x 2^k square of the grid takes one aligned run of 4^k keys (so
+    /// points close in the square mostly get close keys). Low bits below the grid are ignored.
+    #[test]
+    fn sample_key_is_a_morton_curve_on_the_12_bit_grid() {
+        let mut seen = vec![0u64; 1 << 18];
+        for y in 0..4096u32 {
+            for x in 0..4096u32 {
+                let c = sample_key_code(x << 20 | (x * 7919) & 0xFFFFF, y << 20);
+                assert!(c < 1 << 24);
+                assert_eq!(
+                    seen[c as usize / 64] >> (c % 64) & 1,
+                    0,
+                    "({x}, {y}) repeats {c}"
+                );
+                seen[c as usize / 64] |= 1 << (c % 64);
+            }
+        }
+        for k in 0..=12u32 {
+            let side = 1u32 << k;
+            for (qx, qy) in [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(a, b)| (a * side, b * side)) {
+                if qx + side > 4096 || qy + side > 4096 {
+                    continue;
+                }
+                let codes = (qy..qy + side)
+                    .flat_map(|y| (qx..qx + side).map(move |x| (x, y)))
+                    .map(|(x, y)| sample_key_code(x << 20, y << 20));
+                let (lo, hi) = codes.fold((u32::MAX, 0), |(l, h), c| (l.min(c), h.max(c)));
+                assert_eq!(hi - lo + 1, side * side, "square {side} at ({qx}, {qy})");
+                assert_eq!(lo % (side * side), 0, "square {side} at ({qx}, {qy})");
+            }
+        }
     }
 }

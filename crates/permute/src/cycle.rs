@@ -7,17 +7,20 @@
 //! hands the sorting pass the next phase's seeds and keys, with the next mask slice.
 use crate::{Screen, SortParams};
 pub use blueshift_layout::params::{CYCLE_FRAMES, CycleParams};
+use blueshift_layout::params::{SAMPLE_KEY_DIM, sample_key_code};
+use blueshift_sampling::{Sampler, Samples};
 
 impl Screen {
     /// The point cycle's parameters after tracing `frame`, against a spatio-temporal mask
     /// of tile `mask_size` with `mask_frames` slices; `mean_count` frames are in the running
-    /// mean.
+    /// mean; `sample_keys`: the seeds rank by their next light sample (while the view moves).
     pub fn cycle_params(
         &self,
         frame: u64,
         mask_size: u32,
         mask_frames: u32,
         mean_count: u32,
+        sample_keys: bool,
     ) -> CycleParams {
         let cycle = u64::from(CYCLE_FRAMES);
         CycleParams {
@@ -30,8 +33,17 @@ impl Screen {
             mask_size,
             mask_layer: ((frame + 1) % u64::from(mask_frames.max(1))) as u32,
             mean_count,
+            sample_keys: u32::from(sample_keys),
         }
     }
+}
+
+/// The key a seed ranks by under `sample_keys`: where the block-net point it takes at sample
+/// `index` lands in the first vertex's light sample dimensions (a Morton code).
+pub fn sample_key(samples: &Samples, seed: u32, index: u32) -> f32 {
+    let x = samples.bits(Sampler::BlockNet, seed, index, SAMPLE_KEY_DIM);
+    let y = samples.bits(Sampler::BlockNet, seed, index, SAMPLE_KEY_DIM + 1);
+    sample_key_code(x, y) as f32
 }
 
 /// What the point cycle hands the sort besides the seed buffer and the history.
@@ -59,6 +71,7 @@ pub fn cycle_keys_cpu(
     let layer = p.mask_layer as usize * area;
     let mask = volume[layer..layer + area].to_vec();
     let pixels = (p.width * p.height) as usize;
+    let samples = Samples::default();
     let mut out = Vec::with_capacity(pixels);
     for (i, &key) in keys.iter().enumerate().take(pixels) {
         let key = if p.mean_count > 0 {
@@ -69,13 +82,17 @@ pub fn cycle_keys_cpu(
         let (x, y) = (i as u32 % p.width, i as u32 / p.width);
         let s = (y * p.stride + x) as usize;
         history[p.phase as usize * pixels + i] = [seeds[s], key.to_bits()];
-        if p.next_valid != 0 {
+        let key = if p.next_valid != 0 {
             let [seed, bits] = history[p.next_phase as usize * pixels + i];
             seeds[s] = seed;
-            out.push(f32::from_bits(bits));
+            f32::from_bits(bits)
         } else {
-            out.push(key);
-        }
+            key
+        };
+        out.push(match p.sample_keys {
+            0 => key,
+            _ => sample_key(&samples, seeds[s], p.next_phase),
+        });
     }
     CycleOutput { keys: out, mask }
 }
@@ -94,6 +111,7 @@ pub fn with_cycle(sort: SortParams, cycle: &CycleParams) -> SortParams {
         cycle_next_phase: cycle.next_phase,
         cycle_next_valid: cycle.next_valid,
         cycle_mean_count: cycle.mean_count,
+        cycle_sample_keys: cycle.sample_keys,
         ..sort
     }
 }

@@ -27,7 +27,8 @@ pub use blueshift_layout::motion::{GBufferTexel, MotionParams, REPROJECT_NONE};
 pub use blueshift_layout::params::SortParams;
 pub use cpu::{pack_mask_moves, retarget_seeds_cpu, sort_key, sort_seeds_cpu};
 pub use cycle::{
-    CYCLE_FRAMES, CycleOutput, CycleParams, cycle_history_bytes, cycle_keys_cpu, with_cycle,
+    CYCLE_FRAMES, CycleOutput, CycleParams, cycle_history_bytes, cycle_keys_cpu, sample_key,
+    with_cycle,
 };
 pub use edges::classify_pixels_cpu;
 pub use gpu::{CycleInput, PermutePasses, SortInput, SortVariant};
@@ -122,6 +123,7 @@ impl Screen {
             cycle_next_phase: 0,
             cycle_next_valid: 0,
             cycle_mean_count: 0,
+            cycle_sample_keys: 0,
         })
     }
 }

@@ -329,10 +329,11 @@ impl Renderer {
         }
         self.make_state()?;
         let tp = self.trace_params();
+        let moving = self.moving();
         self.view_changed = false;
         let (offset, times) = self.prepare_frame(&tp)?;
         let sort = match self.plan.sort() {
-            Some(s) => Some(self.sort_params(&s, offset)?),
+            Some(s) => Some(self.sort_params(&s, offset, moving)?),
             None => None,
         };
         self.slot_rec().begin()?;

@@ -7,6 +7,7 @@ use blueshift_device::{Buffer, Device};
 use blueshift_layout::params::{ImageParams, TraceParams};
 use blueshift_layout::variants::SortVariant;
 use blueshift_permute::{CycleInput, SortInput, SortParams, grid_offset, mask_offset, pair_phase};
+use blueshift_sampling::Sampler;
 
 impl Renderer {
     /// Records `pass` of the frame traced with `tp`, sorting with `sort`'s parameters.
@@ -64,8 +65,13 @@ impl Renderer {
     }
 
     /// The sorting pass's parameters for this frame: `offset` is the mask offset the frame
-    /// sorts against (fixed grids).
-    pub(crate) fn sort_params(&self, s: &SortPlan, offset: (u32, u32)) -> Result<SortParams> {
+    /// sorts against (fixed grids); `moving`: the frame sees another view than the one before.
+    pub(crate) fn sort_params(
+        &self,
+        s: &SortPlan,
+        offset: (u32, u32),
+        moving: bool,
+    ) -> Result<SortParams> {
         let m = self.cfg.method;
         Ok(match s.grid {
             SortGrid::Moving => {
@@ -82,8 +88,14 @@ impl Renderer {
             }
             SortGrid::Cycle => {
                 // Fixed blocks against the next spatio-temporal slice, the point cycle first.
+                // While the view moves the seeds rank by their next light sample (their
+                // recorded keys belong to what the block showed a cycle ago), which needs the
+                // block net's points.
                 let (n, t) = (self.assets.stbn_n, self.assets.stbn_frames);
-                let cp = self.screen.cycle_params(self.frame, n, t, self.accumulated);
+                let sample_keys = moving && self.cfg.effective_sampler() == Sampler::BlockNet;
+                let cp = self
+                    .screen
+                    .cycle_params(self.frame, n, t, self.accumulated, sample_keys);
                 let sp = SortParams {
                     mask_size: n,
                     ..self.screen.sort_params(s.block, (0, 0))?

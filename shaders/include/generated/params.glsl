@@ -22,8 +22,9 @@ struct SortParams {
     uint cycle_next_phase; // offset 60, size 4
     uint cycle_next_valid; // offset 64, size 4
     uint cycle_mean_count; // offset 68, size 4
+    uint cycle_sample_keys; // offset 72, size 4
 };
-const uint SORT_PARAMS_SIZE = 72;
+const uint SORT_PARAMS_SIZE = 76;
 
 struct TraceParams {
     vec3 cam_origin; // offset 0, size 12
@@ -81,6 +82,7 @@ const float REC709_LUMA_R = 0.2126;
 const float REC709_LUMA_G = 0.7152;
 const float REC709_LUMA_B = 0.0722;
 const uint SKEW_MIN_PIXELS = 8u;
+const uint SAMPLE_KEY_DIM = 2u;
 const float SKEW_LIMIT = 2.0;
 const uint TRACE_LOOP_PATH_VERTEX = 0u;
 const uint TRACE_LOOP_LIGHT_CHOICE = 1u;
