@@ -40,6 +40,30 @@
 #include "sort_blocks.glsl"
 #if SORT_CYCLE
 #include "sampling.glsl"
+
+// The index of the point (x, y) (32-bit fractions) along a Hilbert curve through the
+// 2^SAMPLE_KEY_BITS grid (CPU twin: blueshift_layout::params::sample_key_code). Selects, no
+// branches: the loop unrolls into straight code.
+uint sample_key_code(uint x, uint y) {
+    const uint n = 1u << SAMPLE_KEY_BITS;
+    x >>= 32u - SAMPLE_KEY_BITS;
+    y >>= 32u - SAMPLE_KEY_BITS;
+    uint d = 0u;
+    for (uint s = n / 2u; s > 0u; s >>= 1u) {
+        uint rx = (x & s) != 0u ? 1u : 0u;
+        uint ry = (y & s) != 0u ? 1u : 0u;
+        d += s * s * ((3u * rx) ^ ry);
+        // Into the sub-square's own frame: reflected in the last quadrant, transposed.
+        bool reflect = ry == 0u && rx == 1u;
+        x = reflect ? n - 1u - x : x;
+        y = reflect ? n - 1u - y : y;
+        bool swap = ry == 0u;
+        uint t = swap ? y : x;
+        y = swap ? x : y;
+        x = t;
+    }
+    return d;
+}
 #endif
 
 #if SORT_SLOTS == 16
@@ -261,20 +285,11 @@ void main() {
 #if SORT_CYCLE
     uint pixels = p.width * p.height;
     // The block net's point the seed takes at the next phase, in the first vertex's light
-    // sample dimensions, as a Morton code (CPU twin: blueshift_layout::params::sample_key_code).
-#define SPREAD12(v) { \
-        v &= 0xFFFu; \
-        v = (v | (v << 8u)) & 0x00FF00FFu; \
-        v = (v | (v << 4u)) & 0x0F0F0F0Fu; \
-        v = (v | (v << 2u)) & 0x33333333u; \
-        v = (v | (v << 1u)) & 0x55555555u; \
-    }
-#define SAMPLE_KEY(s) { \
-        uint sx = block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM) >> 20u; \
-        uint sy = block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM + 1u) >> 20u; \
-        SPREAD12(sx) SPREAD12(sy) \
-        val[s] = float(sx | (sy << 1u)); \
-    }
+    // sample dimensions, as its index along the Hilbert curve.
+#define SAMPLE_KEY(s) \
+        val[s] = float(sample_key_code( \
+            block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM), \
+            block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM + 1u)));
 #define LOAD_CYCLE(s, at) { \
         float k = p.cycle_mean_count > 0u ? val[s] - accum[at].w : val[s]; \
         uvec2 rec = uvec2(seed[s], floatBitsToUint(k)); \

@@ -147,7 +147,7 @@ fn sort_cycle_seeds_stay_in_their_blocks() {
 /// While the view moves, the renderer's sort-cycle ranks each block's seeds by where their
 /// next light sample lands: in every 8x8 block, a pixel with a lower mask rank (the slice of
 /// the next frame) holds a seed whose block-net point at the next phase has a lower or equal
-/// Morton code, computed here from the sampler and the mask alone. With the view still again,
+/// Hilbert index, computed here from the sampler and the mask alone. With the view still again,
 /// the seeds rank by their recorded keys, and that order no longer holds everywhere.
 #[test]
 fn a_moving_view_ranks_seeds_by_their_next_light_sample() {

@@ -48,6 +48,7 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant_f32("REC709_LUMA_B", blueshift_layout::REC709_LUMA[2])
                 .constant("SKEW_MIN_PIXELS", params::SKEW_MIN_PIXELS)
                 .constant("SAMPLE_KEY_DIM", params::SAMPLE_KEY_DIM)
+                .constant("SAMPLE_KEY_BITS", params::SAMPLE_KEY_BITS)
                 .constant_f32("SKEW_LIMIT", params::SKEW_LIMIT)
                 .constants(params::TraceLoop::ALL.map(|l| (l.glsl_name(), l as u32)))
                 .constant("TRACE_LOOP_COUNT", params::TRACE_LOOP_COUNT)

@@ -87,18 +87,36 @@ pub const CYCLE_FRAMES: u32 = 16;
 /// (`CycleParams::sample_keys`).
 pub const SAMPLE_KEY_DIM: u32 = 2;
 
-/// The sample key of a 2D point from its two 32-bit fractions: the top 12 bits of each
-/// interleaved along a Morton curve (x in the even bits), so that points close in the plane
-/// get close keys; 24 bits, exact as an f32 (the GLSL `sample_key_code`).
+/// Bits per coordinate of the sample key's grid. A block's 64 points at one phase are a
+/// (0,6,2)-net in the key's pair, one point in each cell of the 8 x 8 grid, so the order along
+/// the Hilbert curve of that grid is already the order along any finer one, without ties.
+pub const SAMPLE_KEY_BITS: u32 = 3;
+
+/// The sample key of a 2D point from its two 32-bit fractions: the index of its cell of the
+/// 2^SAMPLE_KEY_BITS grid along a Hilbert curve. Cells close on the curve are neighbours in
+/// the square, and every aligned 2^k x 2^k square of cells is one run of keys, so points close
+/// in the square mostly get close keys (the GLSL `sample_key_code`). A Morton order, which
+/// jumps at every square's border, ranked worse (docs/experiments.md).
 pub fn sample_key_code(x: u32, y: u32) -> u32 {
-    fn spread(v: u32) -> u32 {
-        let mut v = v & 0xFFF;
-        v = (v | (v << 8)) & 0x00FF_00FF;
-        v = (v | (v << 4)) & 0x0F0F_0F0F;
-        v = (v | (v << 2)) & 0x3333_3333;
-        (v | (v << 1)) & 0x5555_5555
+    const N: u32 = 1 << SAMPLE_KEY_BITS;
+    let (mut x, mut y) = (x >> (32 - SAMPLE_KEY_BITS), y >> (32 - SAMPLE_KEY_BITS));
+    let mut d = 0;
+    let mut s = N / 2;
+    while s > 0 {
+        let rx = u32::from(x & s != 0);
+        let ry = u32::from(y & s != 0);
+        d += s * s * ((3 * rx) ^ ry);
+        // Into the sub-square's own frame: reflected in the last quadrant, transposed.
+        if ry == 0 {
+            if rx == 1 {
+                x = N - 1 - x;
+                y = N - 1 - y;
+            }
+            std::mem::swap(&mut x, &mut y);
+        }
+        s /= 2;
     }
-    spread(x >> 20) | (spread(y >> 20) << 1)
+    d
 }
 
 /// The sorting pass counts the classes of at least SKEW_MIN_PIXELS pixels in a block, and
@@ -353,36 +371,39 @@ mod tests {
         assert_eq!(names.len(), TraceLoop::ALL.len());
     }
 
-    /// The sample key is a Morton curve on the 12-bit grid: a bijection onto 24 bits, and
-    /// every aligned 2^k x 2^k square of the grid takes one aligned run of 4^k keys (so
-    /// points close in the square mostly get close keys). Low bits below the grid are ignored.
+    /// The sample key walks a Hilbert curve through the grid: a bijection onto its cells,
+    /// consecutive keys are 4-neighbours, every aligned 2^k x 2^k square of cells takes one
+    /// aligned run of 4^k keys, and the bits below the grid are ignored.
     #[test]
-    fn sample_key_is_a_morton_curve_on_the_12_bit_grid() {
-        let mut seen = vec![0u64; 1 << 18];
-        for y in 0..4096u32 {
-            for x in 0..4096u32 {
-                let c = sample_key_code(x << 20 | (x * 7919) & 0xFFFFF, y << 20);
-                assert!(c < 1 << 24);
-                assert_eq!(
-                    seen[c as usize / 64] >> (c % 64) & 1,
-                    0,
-                    "({x}, {y}) repeats {c}"
-                );
-                seen[c as usize / 64] |= 1 << (c % 64);
+    fn sample_key_is_a_hilbert_curve_on_its_grid() {
+        let n = 1u32 << SAMPLE_KEY_BITS;
+        let shift = 32 - SAMPLE_KEY_BITS;
+        let mut at = vec![None; (n * n) as usize];
+        for y in 0..n {
+            for x in 0..n {
+                let low = x.wrapping_mul(0x9E37_79B9) >> SAMPLE_KEY_BITS;
+                let c = sample_key_code(x << shift | low, y << shift | low >> 1);
+                assert!(c < n * n);
+                assert_eq!(at[c as usize], None, "({x}, {y}) repeats {c}");
+                at[c as usize] = Some((x, y));
             }
         }
-        for k in 0..=12u32 {
+        let at: Vec<(u32, u32)> = at.into_iter().map(Option::unwrap).collect();
+        for w in at.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            assert_eq!(a.0.abs_diff(b.0) + a.1.abs_diff(b.1), 1, "{a:?} -> {b:?}");
+        }
+        for k in 0..=SAMPLE_KEY_BITS {
             let side = 1u32 << k;
-            for (qx, qy) in [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(a, b)| (a * side, b * side)) {
-                if qx + side > 4096 || qy + side > 4096 {
-                    continue;
+            for qy in (0..n).step_by(side as usize) {
+                for qx in (0..n).step_by(side as usize) {
+                    let codes = (qy..qy + side)
+                        .flat_map(|y| (qx..qx + side).map(move |x| (x, y)))
+                        .map(|(x, y)| sample_key_code(x << shift, y << shift));
+                    let (lo, hi) = codes.fold((u32::MAX, 0), |(l, h), c| (l.min(c), h.max(c)));
+                    assert_eq!(hi - lo + 1, side * side, "square {side} at ({qx}, {qy})");
+                    assert_eq!(lo % (side * side), 0, "square {side} at ({qx}, {qy})");
                 }
-                let codes = (qy..qy + side)
-                    .flat_map(|y| (qx..qx + side).map(move |x| (x, y)))
-                    .map(|(x, y)| sample_key_code(x << 20, y << 20));
-                let (lo, hi) = codes.fold((u32::MAX, 0), |(l, h), c| (l.min(c), h.max(c)));
-                assert_eq!(hi - lo + 1, side * side, "square {side} at ({qx}, {qy})");
-                assert_eq!(lo % (side * side), 0, "square {side} at ({qx}, {qy})");
             }
         }
     }

@@ -39,7 +39,7 @@ impl Screen {
 }
 
 /// The key a seed ranks by under `sample_keys`: where the block-net point it takes at sample
-/// `index` lands in the first vertex's light sample dimensions (a Morton code).
+/// `index` lands in the first vertex's light sample dimensions (its Hilbert index).
 pub fn sample_key(samples: &Samples, seed: u32, index: u32) -> f32 {
     let x = samples.bits(Sampler::BlockNet, seed, index, SAMPLE_KEY_DIM);
     let y = samples.bits(Sampler::BlockNet, seed, index, SAMPLE_KEY_DIM + 1);

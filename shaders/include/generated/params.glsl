@@ -83,6 +83,7 @@ const float REC709_LUMA_G = 0.7152;
 const float REC709_LUMA_B = 0.0722;
 const uint SKEW_MIN_PIXELS = 8u;
 const uint SAMPLE_KEY_DIM = 2u;
+const uint SAMPLE_KEY_BITS = 3u;
 const float SKEW_LIMIT = 2.0;
 const uint TRACE_LOOP_PATH_VERTEX = 0u;
 const uint TRACE_LOOP_LIGHT_CHOICE = 1u;
