@@ -107,22 +107,34 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
     }
 }
 
-/// The renderer's sort-cycle seeds over two cycles: a permutation of the initial seeds at
-/// every frame, and each 8x8 block keeps its own seeds (the history slots stay valid only so).
-#[test]
-fn sort_cycle_seeds_stay_in_their_blocks() {
-    let gpu = Gpu::new();
+/// The default method on the Cornell box in direct light at `w x h`: the scene, the method
+/// assets (the tests read the STBN volume), the renderer and its seed buffer's row stride.
+fn box_sort_cycle(
+    gpu: &Gpu,
+    w: u32,
+    h: u32,
+) -> (Scene, blueshift_render::MethodAssets, Renderer, usize) {
     let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
-    let (w, h) = (37u32, 21u32);
     let cfg = RenderConfig {
         bounces: 1,
         method: Method::SORT_CYCLE,
         ..RenderConfig::new(w, h)
     };
-    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let rows = Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
+    let stride = r.initial_seeds().len() / rows;
+    (s, assets, r, stride)
+}
+
+/// The renderer's sort-cycle seeds over two cycles: a permutation of the initial seeds at
+/// every frame, and each 8x8 block keeps its own seeds (the history slots stay valid only so).
+#[test]
+fn sort_cycle_seeds_stay_in_their_blocks() {
+    let gpu = Gpu::new();
+    let (w, h) = (37u32, 21u32);
+    let (_, _, mut r, stride) = box_sort_cycle(&gpu, w, h);
     let init = r.initial_seeds().to_vec();
-    let stride = init.len() / Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
     let block_sets = |seeds: &[u32]| {
         let mut sets = std::collections::BTreeMap::<(u32, u32), Vec<u32>>::new();
         for y in 0..h {
@@ -152,17 +164,8 @@ fn sort_cycle_seeds_stay_in_their_blocks() {
 #[test]
 fn a_moving_view_ranks_seeds_by_their_next_light_sample() {
     let gpu = Gpu::new();
-    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
-    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
     let (w, h) = (40u32, 24u32);
-    let cfg = RenderConfig {
-        bounces: 1,
-        method: Method::SORT_CYCLE,
-        ..RenderConfig::new(w, h)
-    };
-    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
-    let stride =
-        r.initial_seeds().len() / Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
+    let (s, assets, mut r, stride) = box_sort_cycle(&gpu, w, h);
     let samples = blueshift_sampling::Samples::default();
     let (n, frames) = (assets.stbn_n, assets.stbn_frames);
     // Pairs of pixels of one block whose seeds' next light samples are out of the mask's
