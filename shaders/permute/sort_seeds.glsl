@@ -29,8 +29,9 @@
 //   SORT_CYCLE    1: first the point cycle: record each pixel's (seed, key minus running
 //                 mean) in the slot of this frame's phase, then rank the seeds and keys of the
 //                 next phase's slot (once written) against mask slice SortParams::mask_layer;
-//                 with SortParams::cycle_sample_keys the seeds rank by their next light
-//                 sample's position instead of those keys
+//   SORT_SAMPLE_KEYS 1 (only with SORT_CYCLE): the seeds rank by their next light sample's
+//                 position instead of those keys (SortParams::cycle_sample_keys, from which
+//                 the pass picks this specialisation)
 // With the first four 0 this is the paper's sorting and nothing else.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
@@ -300,8 +301,13 @@ void main() {
             k = uintBitsToFloat(h.y); \
         } \
         val[s] = k; \
-        if (p.cycle_sample_keys != 0u) SAMPLE_KEY(s) \
+        CYCLE_SAMPLE_KEY(s) \
     }
+#if SORT_SAMPLE_KEYS
+#define CYCLE_SAMPLE_KEY(s) SAMPLE_KEY(s)
+#else
+#define CYCLE_SAMPLE_KEY(s)
+#endif
 #else
 #define LOAD_CYCLE(s, at)
 #endif

@@ -301,11 +301,11 @@ fn mask_moves_pack_and_refuse() {
     }
 }
 
-/// Every variant of the sorting pass (`SortVariant`: classes, history, pairs, skew counts,
-/// retargeting, the point cycle, each compiled in or out, for blocks up to 4x4 and up to 8x8) against the CPU
-/// twins given the same inputs: an absent class buffer is one class per block, an absent
-/// history the raw key. Classes, NaN histories,
-/// tied keys and a firefly tail in places, on a moving grid with partial blocks.
+/// Every shader of the sorting pass (`SortVariant`: classes, history, pairs, skew counts,
+/// retargeting, the point cycle with and without sample keys, each compiled in or out, for
+/// blocks up to 4x4 and up to 8x8) against the CPU twins given the same inputs: an absent
+/// class buffer is one class per block, an absent history the raw key. Classes, NaN
+/// histories, tied keys and a firefly tail in places, on a moving grid with partial blocks.
 #[test]
 fn every_sort_variant_matches_cpu() {
     let mut gpu = Gpu::new();
@@ -341,8 +341,9 @@ fn every_sort_variant_matches_cpu() {
     let classes_b = upload("variant.classes", &classes);
     let history_b = Buffer::from_slice(&dev, "variant.history", &history).unwrap();
     // The point cycle: a two-slice volume (the mask is slice 1), running means, and a written
-    // next-phase slot holding each pixel's own seed with a random key; the seeds rank by their
-    // next light sample (the recorded keys are covered over whole cycles in cycle.rs).
+    // next-phase slot holding each pixel's own seed with a random key; each cycle variant runs
+    // twice, its seeds ranked by those keys and then (a shader of its own) by their next light
+    // sample.
     let volume: Vec<u32> = rng.perm(n * n).into_iter().chain(mask.clone()).collect();
     let volume_b = upload("variant.volume", &volume);
     let means: Vec<f32> = (0..px).map(|_| (rng.next_u32() % 7) as f32 * 0.5).collect();
@@ -362,7 +363,7 @@ fn every_sort_variant_matches_cpu() {
         mask_size: n,
         mask_layer: 1,
         mean_count: 5,
-        sample_keys: 1,
+        sample_keys: 0,
     };
     let mut cycle_history = vec![[0u32; 2]; CYCLE_FRAMES as usize * px];
     for (i, slot) in cycle_history[4 * px..5 * px].iter_mut().enumerate() {
@@ -373,7 +374,13 @@ fn every_sort_variant_matches_cpu() {
         ];
     }
     let mut checked = 0;
-    for (i, v) in SortVariant::all().into_iter().enumerate() {
+    let cases = SortVariant::all().into_iter().flat_map(|v| {
+        let keyed = v.cycle.then_some((v, 1));
+        std::iter::once((v, 0)).chain(keyed)
+    });
+    for (i, (v, sample_keys)) in cases.enumerate() {
+        let cp = CycleParams { sample_keys, ..cp };
+        let name = v.shader_for(sample_keys != 0);
         // The largest block of each slot count: 8x8 (64 slots) or 4x4 (16).
         let block = if v.large { 8 } else { 4 };
         let p = SortParams {
@@ -422,7 +429,7 @@ fn every_sort_variant_matches_cpu() {
             let mut h = cycle_history.clone();
             let out = cycle_keys_cpu(&cp, &lum, &means, &mut cpu, &mut h, &volume);
             let got: Vec<[u32; 2]> = hist_b.read().unwrap();
-            assert_eq!(got, h, "{}: history slots", v.shader());
+            assert_eq!(got, h, "{name}: history slots");
             (out.keys, out.mask)
         } else {
             (lum.clone(), mask.clone())
@@ -434,13 +441,14 @@ fn every_sort_variant_matches_cpu() {
         } else {
             seeds.read::<u32>().unwrap()
         };
-        assert_eq!(got, cpu, "{}", v.shader());
-        assert!(is_permutation_of(&cpu, &init), "{}", v.shader());
+        assert_eq!(got, cpu, "{name}");
+        assert!(is_permutation_of(&cpu, &init), "{name}");
         if v.skew {
-            assert_eq!(stats.read::<u32>().unwrap(), counts, "{}", v.shader());
-            assert!(counts[1] > 0, "{}: no class counted", v.shader());
+            assert_eq!(stats.read::<u32>().unwrap(), counts, "{name}");
+            assert!(counts[1] > 0, "{name}: no class counted");
         }
         checked += 1;
     }
-    assert_eq!(checked, 48);
+    // 48 variants, the 8 cycle ones twice.
+    assert_eq!(checked, 56);
 }

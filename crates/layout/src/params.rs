@@ -73,6 +73,7 @@ gpu_struct! {
         /// the next phase) instead of by their recorded keys. While the view moves the recorded
         /// keys belong to what the block showed a cycle ago; the sample's own position still
         /// spreads the block's net over the mask, so neighbours take distant light samples.
+        /// The sorting pass runs a shader with or without them compiled in, as this asks.
         pub sample_keys: u32,
     }
 }

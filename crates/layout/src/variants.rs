@@ -184,10 +184,22 @@ impl SortVariant {
         block > 4
     }
 
-    fn variant(self) -> ShaderVariant {
+    /// The shader the sorting pass runs for this variant: `shader()`, or with `sample_keys`
+    /// (sort-cycle ranking by the next light sample, `SortParams::cycle_sample_keys`, only
+    /// with `cycle`) its specialisation that has them compiled in. Two shaders rather than a
+    /// run-time branch: llvmpipe runs both sides of a uniform branch, so a still view would
+    /// pay for keys it never uses.
+    pub fn shader_for(self, sample_keys: bool) -> String {
+        match sample_keys && self.cycle {
+            true => format!("{}_samplekeys", self.shader()),
+            false => self.shader(),
+        }
+    }
+
+    fn variant(self, sample_keys: bool) -> ShaderVariant {
         let bit = |on: bool| u32::from(on).to_string();
         ShaderVariant {
-            name: self.shader(),
+            name: self.shader_for(sample_keys),
             body: "permute/sort_seeds.glsl",
             defines: vec![
                 ("SORT_CLASSES", bit(self.classes)),
@@ -200,12 +212,13 @@ impl SortVariant {
                 ),
                 ("SORT_RETARGET", bit(self.retarget)),
                 ("SORT_CYCLE", bit(self.cycle)),
+                ("SORT_SAMPLE_KEYS", bit(sample_keys && self.cycle)),
             ],
         }
     }
 
-    /// Every combination a method can ask for: 48 shaders (retargeting and the point cycle
-    /// never meet pairs, skew counts or each other: pairs belong to the moving grid).
+    /// Every combination a method can ask for: 48 (retargeting and the point cycle never
+    /// meet pairs, skew counts or each other: pairs belong to the moving grid).
     pub fn all() -> Vec<SortVariant> {
         (0..128u32)
             .map(|b| SortVariant {
@@ -226,7 +239,10 @@ impl SortVariant {
 /// Every generated shader variant, for the shaders crate's build script.
 pub fn shader_variants() -> Vec<ShaderVariant> {
     let trace = TraceVariant::all().into_iter().map(TraceVariant::variant);
-    let sort = SortVariant::all().into_iter().map(SortVariant::variant);
+    let sort = SortVariant::all().into_iter().flat_map(|v| {
+        let keyed = v.cycle.then(|| v.variant(true));
+        std::iter::once(v.variant(false)).chain(keyed)
+    });
     trace.chain(sort).collect()
 }
 
@@ -252,5 +268,12 @@ mod tests {
         assert_eq!(counting.len(), 2);
         assert!(counting.iter().all(|v| v.canonical() == **v));
         assert_eq!(SortVariant::PAPER.shader(), "permute/sort_seeds");
+        // Sample keys specialise only the point cycle's shaders.
+        assert_eq!(SortVariant::PAPER.shader_for(true), "permute/sort_seeds");
+        let cycles = SortVariant::all().into_iter().filter(|v| v.cycle).count();
+        assert_eq!(
+            shader_variants().len(),
+            all.len() + SortVariant::all().len() + cycles
+        );
     }
 }

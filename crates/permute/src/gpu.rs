@@ -117,8 +117,8 @@ const SORT_OPTIONAL: [Binding; 6] = [
 pub struct PermutePasses {
     dev: Device,
     classify: ComputePipeline,
-    /// Sorting-pass variants created so far.
-    sort: PipelineCache<SortVariant>,
+    /// Sorting-pass shaders created so far, by variant and sample keys (`shader_for`).
+    sort: PipelineCache<(SortVariant, bool)>,
 }
 
 impl std::fmt::Debug for PermutePasses {
@@ -179,22 +179,25 @@ impl PermutePasses {
         };
         let groups = block_groups(p, area)?;
         let dev = &self.dev;
-        let pipeline = self.sort.get_or_create(v, |v| {
-            let optional = SORT_OPTIONAL
-                .iter()
-                .zip(optional_flags(v))
-                .filter(|(_, on)| *on);
-            let bindings: Vec<Binding> = SORT_BINDINGS
-                .into_iter()
-                .chain(optional.map(|(b, _)| *b))
-                .collect();
-            pipeline(
-                dev,
-                &v.shader(),
-                &bindings,
-                std::mem::size_of::<SortParams>(),
-            )
-        })?;
+        let sample_keys = v.cycle && p.cycle_sample_keys != 0;
+        let pipeline = self
+            .sort
+            .get_or_create((v, sample_keys), |(v, sample_keys)| {
+                let optional = SORT_OPTIONAL
+                    .iter()
+                    .zip(optional_flags(v))
+                    .filter(|(_, on)| *on);
+                let bindings: Vec<Binding> = SORT_BINDINGS
+                    .into_iter()
+                    .chain(optional.map(|(b, _)| *b))
+                    .collect();
+                pipeline(
+                    dev,
+                    &v.shader_for(sample_keys),
+                    &bindings,
+                    std::mem::size_of::<SortParams>(),
+                )
+            })?;
         rec.dispatch(pipeline, &resources, bytemuck::bytes_of(p), groups)?;
         Ok(())
     }
