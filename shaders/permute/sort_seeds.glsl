@@ -39,7 +39,7 @@
 #include "generated/params.glsl"
 #include "generated/sort_network.glsl"
 #include "sort_blocks.glsl"
-#if SORT_CYCLE
+#if SORT_SAMPLE_KEYS
 #include "sampling.glsl"
 
 // The index of the point (x, y) (32-bit fractions) along a Hilbert curve through the
@@ -285,12 +285,16 @@ void main() {
 #endif
 #if SORT_CYCLE
     uint pixels = p.width * p.height;
+#if SORT_SAMPLE_KEYS
     // The block net's point the seed takes at the next phase, in the first vertex's light
     // sample dimensions, as its index along the Hilbert curve.
 #define SAMPLE_KEY(s) \
         val[s] = float(sample_key_code( \
             block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM), \
             block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM + 1u)));
+#else
+#define SAMPLE_KEY(s)
+#endif
 #define LOAD_CYCLE(s, at) { \
         float k = p.cycle_mean_count > 0u ? val[s] - accum[at].w : val[s]; \
         uvec2 rec = uvec2(seed[s], floatBitsToUint(k)); \
@@ -301,13 +305,8 @@ void main() {
             k = uintBitsToFloat(h.y); \
         } \
         val[s] = k; \
-        CYCLE_SAMPLE_KEY(s) \
+        SAMPLE_KEY(s) \
     }
-#if SORT_SAMPLE_KEYS
-#define CYCLE_SAMPLE_KEY(s) SAMPLE_KEY(s)
-#else
-#define CYCLE_SAMPLE_KEY(s)
-#endif
 #else
 #define LOAD_CYCLE(s, at)
 #endif

@@ -374,13 +374,12 @@ fn every_sort_variant_matches_cpu() {
         ];
     }
     let mut checked = 0;
-    let cases = SortVariant::all().into_iter().flat_map(|v| {
-        let keyed = v.cycle.then_some((v, 1));
-        std::iter::once((v, 0)).chain(keyed)
-    });
-    for (i, (v, sample_keys)) in cases.enumerate() {
-        let cp = CycleParams { sample_keys, ..cp };
-        let name = v.shader_for(sample_keys != 0);
+    for (i, (v, keys)) in SortVariant::shaders().into_iter().enumerate() {
+        let cp = CycleParams {
+            sample_keys: u32::from(keys),
+            ..cp
+        };
+        let name = v.shader_for(keys);
         // The largest block of each slot count: 8x8 (64 slots) or 4x4 (16).
         let block = if v.large { 8 } else { 4 };
         let p = SortParams {

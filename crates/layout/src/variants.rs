@@ -234,15 +234,23 @@ impl SortVariant {
             .filter(|v| !(v.retarget && v.cycle))
             .collect()
     }
+
+    /// Every compiled sorting shader as (variant, sample keys): each of `all()` without
+    /// sample keys, and the point cycle's with them too (`shader_for`).
+    pub fn shaders() -> Vec<(SortVariant, bool)> {
+        SortVariant::all()
+            .into_iter()
+            .flat_map(|v| std::iter::once((v, false)).chain(v.cycle.then_some((v, true))))
+            .collect()
+    }
 }
 
 /// Every generated shader variant, for the shaders crate's build script.
 pub fn shader_variants() -> Vec<ShaderVariant> {
     let trace = TraceVariant::all().into_iter().map(TraceVariant::variant);
-    let sort = SortVariant::all().into_iter().flat_map(|v| {
-        let keyed = v.cycle.then(|| v.variant(true));
-        std::iter::once(v.variant(false)).chain(keyed)
-    });
+    let sort = SortVariant::shaders()
+        .into_iter()
+        .map(|(v, keys)| v.variant(keys));
     trace.chain(sort).collect()
 }
 
