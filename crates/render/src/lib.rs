@@ -19,6 +19,7 @@ mod camera_path;
 mod config;
 mod cycle;
 mod error;
+mod follow;
 mod image;
 mod method;
 mod method_spec;
@@ -43,7 +44,8 @@ pub use camera_path::{CameraPath, Keyframe};
 pub use config::{Accumulation, RenderConfig};
 pub use error::{RenderError, Result};
 pub use method::{
-    GRID_BLOCK, Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Transport,
+    GRID_BLOCK, Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Target,
+    Transport,
 };
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
@@ -125,6 +127,8 @@ pub struct Renderer {
     cycle: Option<cycle::CycleHistory>,
     /// The `taa` pass and its state, made when the accumulation first follows the motion.
     taa: Option<taa_pass::TaaPass>,
+    /// The image motion a moving sorting target follows (`target=follow`).
+    follow: follow::FollowShift,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -203,6 +207,7 @@ impl Renderer {
             surfaces: None,
             cycle: None,
             taa: None,
+            follow: follow::FollowShift::new(scene.bounds().center()),
             cfg,
         })
     }
@@ -272,6 +277,7 @@ impl Renderer {
         if let Some(t) = &mut self.taa {
             t.reset();
         }
+        self.follow.reset();
         Ok(())
     }
 
@@ -330,6 +336,16 @@ impl Renderer {
         self.make_state()?;
         let tp = self.trace_params();
         let moving = self.moving();
+        if self.cfg.method.follows_target() {
+            self.follow.update(&follow::View {
+                camera: self.camera,
+                size: self
+                    .cfg
+                    .view_size
+                    .unwrap_or((self.cfg.width, self.cfg.height)),
+                offset: self.view_offset,
+            });
+        }
         self.view_changed = false;
         let (offset, times) = self.prepare_frame(&tp)?;
         let sort = match self.plan.sort() {

@@ -98,6 +98,17 @@ pub enum MaskDims {
     Motion,
 }
 
+/// What the sorting pass ranks against while the view moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Target {
+    /// The mask stays on the screen.
+    Screen,
+    /// The spatio-temporal mask moves with the image (the scene centre's image motion), so a
+    /// filter that follows the motion meets a surface point at one texel's temporally blue
+    /// values (only with [`Points::Cycle`]; `follow.rs`).
+    Follow,
+}
+
 /// A seed-permutation method: each field gates its own passes and shader code.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Permutation {
@@ -108,6 +119,7 @@ pub struct Permutation {
     pub pairs: Pairs,
     pub points: Points,
     pub mask: MaskDims,
+    pub target: Target,
 }
 
 /// A way of choosing per-pixel randomness over frames.
@@ -158,6 +170,7 @@ const PAPER: Permutation = Permutation {
     pairs: Pairs::Off,
     points: Points::Fixed,
     mask: MaskDims::None,
+    target: Target::Screen,
 };
 
 const SORT: Permutation = Permutation {
@@ -173,6 +186,7 @@ const HISTORY: Permutation = Permutation {
     pairs: Pairs::Thin,
     points: Points::Fixed,
     mask: MaskDims::None,
+    target: Target::Screen,
 };
 
 const CYCLE: Permutation = Permutation {
@@ -352,6 +366,11 @@ impl Method {
     }
 
     /// Whether the sorting pass ranks history keys (`permute/history_key`).
+    /// Whether the sorting target moves with the image ([`Target::Follow`]).
+    pub fn follows_target(self) -> bool {
+        self.has(|p| p.target == Target::Follow)
+    }
+
     pub fn history_keys(self) -> bool {
         self.has(|p| p.key == Key::History)
     }

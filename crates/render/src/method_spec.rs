@@ -1,11 +1,11 @@
 //! The spelled-out form of a permutation method, for experiments: `PRESET:field=value,...`,
 //! e.g. `sort:transport=grid,key=history,motion=reproject`. Each field overrides the preset's.
 use crate::method::{
-    Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Transport,
+    Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Target, Transport,
 };
 
 /// (field, values in order of their enum) of every field, for parsing and help.
-const FIELDS: [(&str, &[&str]); 7] = [
+const FIELDS: [(&str, &[&str]); 8] = [
     ("key", &["raw", "demod", "history"]),
     ("grouping", &["blocks", "surfaces", "still-surfaces"]),
     ("transport", &["none", "retarget", "grid"]),
@@ -13,10 +13,11 @@ const FIELDS: [(&str, &[&str]); 7] = [
     ("pairs", &["off", "thin", "adaptive", "all"]),
     ("points", &["fixed", "cycle"]),
     ("mask", &["none", "jitter", "motion"]),
+    ("target", &["screen", "follow"]),
 ];
 
 /// (field, value) of each field of `p`, in the order of [`FIELDS`].
-pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 7] {
+pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 8] {
     let idx = [
         p.key as usize,
         p.grouping as usize,
@@ -25,6 +26,7 @@ pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 7] {
         p.pairs as usize,
         p.points as usize,
         p.mask as usize,
+        p.target as usize,
     ];
     std::array::from_fn(|i| (FIELDS[i].0, FIELDS[i].1[idx[i]]))
 }
@@ -56,7 +58,8 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
         "motion" => p.motion = [Motion::None, Motion::Reproject][i],
         "pairs" => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive, Pairs::All][i],
         "points" => p.points = [Points::Fixed, Points::Cycle][i],
-        _ => p.mask = [MaskDims::None, MaskDims::Jitter, MaskDims::Motion][i],
+        "mask" => p.mask = [MaskDims::None, MaskDims::Jitter, MaskDims::Motion][i],
+        _ => p.target = [Target::Screen, Target::Follow][i],
     }
     Ok(())
 }
@@ -83,6 +86,13 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
         return Err(
             "points=cycle needs transport=none and motion=none (a seed's history slots stay \
              valid only while it stays in its block)"
+                .into(),
+        );
+    }
+    if p.target == Target::Follow && p.points != Points::Cycle {
+        return Err(
+            "target=follow needs points=cycle (only the point cycle sorts against the \
+             spatio-temporal mask it moves)"
                 .into(),
         );
     }
@@ -182,6 +192,9 @@ mod tests {
                 .mask_dims(true)
         );
         assert_eq!((moving & !still).count_ones(), 4);
+        let follow: Method = "sort-cycle:target=follow".parse().expect("valid");
+        assert_eq!(follow.name(), "sort-cycle:target=follow");
+        assert!(follow.follows_target() && !c.follows_target());
     }
 
     #[test]
@@ -197,5 +210,6 @@ mod tests {
         assert!(err("sort-retarget:points=cycle").contains("needs transport=none"));
         assert!(err("sort-cycle:points=loop").contains("points: fixed, cycle"));
         assert!(err("sort-grid-history:grouping=still-surfaces").contains("needs motion=none"));
+        assert!(err("sort-retarget:target=follow").contains("needs points=cycle"));
     }
 }

@@ -96,9 +96,15 @@ impl Renderer {
                 let cp = self
                     .screen
                     .cycle_params(self.frame, n, t, self.accumulated, sample_keys);
+                // `target=follow`: the volume moves with the image (one frame behind it: a
+                // constant lag, which does not matter to a pattern that only has to move along).
+                let offset = match self.cfg.method.follows_target() {
+                    true => self.follow.offset(n),
+                    false => (0, 0),
+                };
                 let sp = SortParams {
                     mask_size: n,
-                    ..self.screen.sort_params(s.block, (0, 0))?
+                    ..self.screen.sort_params(s.block, offset)?
                 };
                 blueshift_permute::with_cycle(sp, &cp)
             }
