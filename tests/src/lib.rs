@@ -23,6 +23,8 @@ mod cycle;
 #[cfg(test)]
 mod demod;
 #[cfg(test)]
+mod follow;
+#[cfg(test)]
 mod frame_memory;
 #[cfg(test)]
 mod hbo19;
