@@ -179,19 +179,7 @@ fn a_moving_view_ranks_seeds_by_their_next_light_sample() {
             let seed = seeds[y as usize * stride + x as usize];
             (rank, blueshift_permute::sample_key(&samples, seed, phase))
         };
-        let mut bad = 0;
-        for (bx, by) in (0..w.div_ceil(8)).flat_map(|bx| (0..h.div_ceil(8)).map(move |by| (bx, by)))
-        {
-            let px: Vec<(u32, f32)> = (0..64)
-                .map(|i| (bx * 8 + i % 8, by * 8 + i / 8))
-                .filter(|&(x, y)| x < w && y < h)
-                .map(|(x, y)| at(x, y))
-                .collect();
-            for a in &px {
-                bad += px.iter().filter(|b| a.0 < b.0 && a.1 > b.1).count();
-            }
-        }
-        bad
+        crate::pairs_out_of_order(w, h, at)
     };
     let mut cam = s.camera_or_default();
     r.render_frame().unwrap();

@@ -6,6 +6,12 @@ use blueshift_permute::{CYCLE_FRAMES, Screen, sample_key};
 use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
 use blueshift_scene::{Camera, Scene};
 
+/// The Cornell box and the method assets.
+fn box_scene() -> (Scene, MethodAssets) {
+    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
+    (s, MethodAssets::load(&default_assets_dir()).unwrap())
+}
+
 fn renderer(gpu: &Gpu, s: &Scene, assets: &MethodAssets, method: &str, w: u32, h: u32) -> Renderer {
     let cfg = RenderConfig {
         bounces: 1,
@@ -48,18 +54,7 @@ fn out_of_order(
             sample_key(&samples, seeds[y as usize * stride + x as usize], phase),
         )
     };
-    let mut bad = 0;
-    for (bx, by) in (0..w.div_ceil(8)).flat_map(|bx| (0..h.div_ceil(8)).map(move |by| (bx, by))) {
-        let px: Vec<(u32, f32)> = (0..64)
-            .map(|i| (bx * 8 + i % 8, by * 8 + i / 8))
-            .filter(|&(x, y)| x < w && y < h)
-            .map(|(x, y)| at(x, y))
-            .collect();
-        for a in &px {
-            bad += px.iter().filter(|b| a.0 < b.0 && a.1 > b.1).count();
-        }
-    }
-    bad
+    crate::pairs_out_of_order(w, h, at)
 }
 
 /// A strafe to the right moves the image, and the target with it, to the left: after every
@@ -70,8 +65,7 @@ fn out_of_order(
 fn a_moving_view_sorts_against_the_slice_moved_with_the_image() {
     let gpu = Gpu::new();
     let (w, h) = (40u32, 24u32);
-    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
-    let assets = MethodAssets::load(&default_assets_dir()).unwrap();
+    let (s, assets) = box_scene();
     let mut r = renderer(&gpu, &s, &assets, "sort-cycle:target=follow", w, h);
     let rows = Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
     let stride = r.initial_seeds().len() / rows;
@@ -104,8 +98,7 @@ fn a_moving_view_sorts_against_the_slice_moved_with_the_image() {
 fn a_still_view_sorts_as_sort_cycle() {
     let gpu = Gpu::new();
     let (w, h) = (24u32, 16u32);
-    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
-    let assets = MethodAssets::load(&default_assets_dir()).unwrap();
+    let (s, assets) = box_scene();
     let mut a = renderer(&gpu, &s, &assets, "sort-cycle", w, h);
     let mut b = renderer(&gpu, &s, &assets, "sort-cycle:target=follow", w, h);
     for _ in 0..CYCLE_FRAMES + 3 {

@@ -61,6 +61,24 @@ pub fn same_bits(a: &[[f32; 4]], b: &[[f32; 4]]) -> bool {
             .all(|(p, q)| p.map(f32::to_bits) == q.map(f32::to_bits))
 }
 
+/// Pairs of pixels of one 8x8 block of a `w x h` screen out of order: `at(x, y)` gives a
+/// pixel's (mask rank, sample key), and a pair is out of order when the lower rank holds the
+/// higher key.
+pub fn pairs_out_of_order(w: u32, h: u32, at: impl Fn(u32, u32) -> (u32, f32)) -> usize {
+    let mut bad = 0;
+    for (bx, by) in (0..w.div_ceil(8)).flat_map(|bx| (0..h.div_ceil(8)).map(move |by| (bx, by))) {
+        let px: Vec<(u32, f32)> = (0..64)
+            .map(|i| (bx * 8 + i % 8, by * 8 + i / 8))
+            .filter(|&(x, y)| x < w && y < h)
+            .map(|(x, y)| at(x, y))
+            .collect();
+        for a in &px {
+            bad += px.iter().filter(|b| a.0 < b.0 && a.1 > b.1).count();
+        }
+    }
+    bad
+}
+
 /// Serialises creating and destroying instances and devices across the test threads (the
 /// tests themselves still run in parallel). The loader, the validation layer and lavapipe keep
 /// process-wide state there; a cold CI run once died with SIGSEGV while tests were creating
