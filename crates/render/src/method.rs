@@ -365,12 +365,12 @@ impl Method {
         self.has(|p| p.grouping == Grouping::StillSurfaces)
     }
 
-    /// Whether the sorting pass ranks history keys (`permute/history_key`).
     /// Whether the sorting target moves with the image ([`Target::Follow`]).
     pub fn follows_target(self) -> bool {
         self.has(|p| p.target == Target::Follow)
     }
 
+    /// Whether the sorting pass ranks history keys (`permute/history_key`).
     pub fn history_keys(self) -> bool {
         self.has(|p| p.key == Key::History)
     }
