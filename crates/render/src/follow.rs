@@ -3,7 +3,8 @@
 //! the motion then meets each surface point at the same mask texel frame after frame, whose
 //! values over the slices are temporally blue. One shift for the whole image, the image
 //! motion of the scene's centre: exact for that depth, a drift of the parallax elsewhere.
-use blueshift_scene::Camera;
+use blueshift_layout::motion::MotionParams;
+use blueshift_permute::project_previous;
 use glam::{DVec2, Vec3};
 
 /// The accumulated image motion of one world point.
@@ -16,34 +17,6 @@ pub(crate) struct FollowShift {
     last: Option<DVec2>,
     /// The sum of its moves since the sequence began (pixels).
     shift: DVec2,
-}
-
-/// One view: camera, view window size (pixels) and image-space offset.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct View {
-    pub camera: Camera,
-    pub size: (u32, u32),
-    pub offset: (f32, f32),
-}
-
-impl View {
-    /// The pixel coordinates (x right, y down; pixel centres at +0.5) where the primary rays
-    /// of this view meet `p`, the inverse of the trace pass's ray generation; `None` when `p`
-    /// is not in front of the camera.
-    pub fn project(&self, p: Vec3) -> Option<DVec2> {
-        let (w, h) = (self.size.0 as f32, self.size.1 as f32);
-        let b = self.camera.basis(w / h);
-        let d = p - b.position;
-        let z = d.dot(b.forward);
-        if z.is_nan() || z <= 1e-6 {
-            return None;
-        }
-        let ndc_x = d.dot(b.right) / (b.right.length_squared() * z);
-        let ndc_y = -d.dot(b.up) / (b.up.length_squared() * z);
-        let x = f64::from((ndc_x + 1.0) * 0.5 * w - self.offset.0);
-        let y = f64::from((ndc_y + 1.0) * 0.5 * h - self.offset.1);
-        (x.is_finite() && y.is_finite()).then_some(DVec2::new(x, y))
-    }
 }
 
 impl FollowShift {
@@ -60,9 +33,11 @@ impl FollowShift {
         *self = Self::new(self.centre);
     }
 
-    /// Adds the centre's move from the last view to `view`.
-    pub fn update(&mut self, view: &View) {
-        let now = view.project(self.centre);
+    /// Adds the centre's move from the last view to `view` (the frame's camera, as
+    /// `motion_params` gives it; `project_previous` projects with any such camera).
+    pub fn update(&mut self, view: &MotionParams) {
+        let (c, z) = project_previous(view, self.centre);
+        let now = (z > 0.0 && c.is_finite()).then(|| c.as_dvec2());
         if let (Some(a), Some(b)) = (self.last, now) {
             self.shift += b - a;
         }
@@ -81,51 +56,44 @@ impl FollowShift {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use blueshift_scene::Camera;
 
-    fn camera(x: f32) -> Camera {
-        Camera {
+    /// The view of a camera at height 1 looking down -z from x, 128x96 pixels.
+    fn view(x: f32, offset: (f32, f32)) -> MotionParams {
+        let cam = Camera {
             position: Vec3::new(x, 1.0, 4.0),
             target: Vec3::new(x, 1.0, 0.0),
             up: Vec3::Y,
             yfov: 45f32.to_radians(),
+        };
+        let b = cam.basis(128.0 / 96.0);
+        MotionParams {
+            cam_origin: b.position,
+            cam_forward: b.forward,
+            cam_right: b.right,
+            cam_up: b.up,
+            view_offset: offset.into(),
+            view_size: glam::Vec2::new(128.0, 96.0),
+            ..Default::default()
         }
     }
 
-    fn view(x: f32, offset: (f32, f32)) -> View {
-        View {
-            camera: camera(x),
-            size: (128, 96),
-            offset,
-        }
-    }
-
-    #[test]
-    fn projection_inverts_the_primary_rays() {
-        // The ray through pixel (x, y) as trace_paths builds it, then back to its pixel.
-        let v = view(0.3, (2.0, -1.0));
-        let b = v.camera.basis(128.0 / 96.0);
-        for (x, y) in [(0.5f32, 0.5f32), (64.0, 48.0), (100.25, 10.75)] {
-            let ndc_x = (x + v.offset.0) / 128.0 * 2.0 - 1.0;
-            let ndc_y = (y + v.offset.1) / 96.0 * 2.0 - 1.0;
-            let dir = (b.forward + ndc_x * b.right - ndc_y * b.up).normalize();
-            let p = v.project(b.position + dir * 3.7).expect("in front");
-            assert!((p.x - f64::from(x)).abs() < 1e-3 && (p.y - f64::from(y)).abs() < 1e-3);
-        }
-        assert!(v.project(b.position - b.forward).is_none());
+    fn at(v: &MotionParams, p: Vec3) -> DVec2 {
+        project_previous(v, p).0.as_dvec2()
     }
 
     #[test]
     fn the_shift_is_the_followed_point_s_motion() {
         let centre = Vec3::new(0.2, 0.7, -1.0);
         let mut f = FollowShift::new(centre);
-        let views: Vec<View> = (0..5).map(|t| view(0.05 * t as f32, (0.0, 0.0))).collect();
+        let views: Vec<MotionParams> = (0..5).map(|t| view(0.05 * t as f32, (0.0, 0.0))).collect();
         for v in &views {
             f.update(v);
         }
-        let moved = views[4].project(centre).unwrap() - views[0].project(centre).unwrap();
-        assert!((f.shift - moved).length() < 1e-9);
+        let moved = at(&views[4], centre) - at(&views[0], centre);
+        assert!((f.shift - moved).length() < 1e-4);
         // The camera moves right: the image moves left, and the mask with it.
-        assert!(f.shift.x < -1.0 && f.shift.y.abs() < 1e-6);
+        assert!(f.shift.x < -1.0 && f.shift.y.abs() < 1e-4);
         let n = 64;
         assert_eq!(f.offset(n), ((f.shift.x.round().abs() as u32) % n, 0));
     }
@@ -144,6 +112,11 @@ mod tests {
         }
         assert_eq!(still.shift, DVec2::ZERO);
         assert_eq!(still.offset(64), (0, 0));
+        // Behind the camera the point is not followed, and the shift stays.
+        let mut behind = FollowShift::new(Vec3::new(0.0, 1.0, 9.0));
+        behind.update(&view(0.0, (0.0, 0.0)));
+        behind.update(&view(0.5, (0.0, 0.0)));
+        assert_eq!((behind.shift, behind.last), (DVec2::ZERO, None));
         still.update(&view(0.9, (0.0, 0.0)));
         still.reset();
         assert_eq!((still.shift, still.last), (DVec2::ZERO, None));

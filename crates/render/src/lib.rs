@@ -337,14 +337,7 @@ impl Renderer {
         let tp = self.trace_params();
         let moving = self.moving();
         if self.cfg.method.follows_target() {
-            self.follow.update(&follow::View {
-                camera: self.camera,
-                size: self
-                    .cfg
-                    .view_size
-                    .unwrap_or((self.cfg.width, self.cfg.height)),
-                offset: self.view_offset,
-            });
+            self.follow.update(&motion_params(&tp, &self.screen));
         }
         self.view_changed = false;
         let (offset, times) = self.prepare_frame(&tp)?;
