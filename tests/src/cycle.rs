@@ -107,10 +107,12 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
     }
 }
 
-/// The default method on the Cornell box in direct light at `w x h`: the scene, the method
-/// assets (the tests read the STBN volume), the renderer and its seed buffer's row stride.
+/// `method` (a `sort-cycle` form) on the Cornell box in direct light at `w x h`: the scene,
+/// the method assets (the tests read the STBN volume), the renderer and its seed buffer's row
+/// stride.
 fn box_sort_cycle(
     gpu: &Gpu,
+    method: Method,
     w: u32,
     h: u32,
 ) -> (Scene, blueshift_render::MethodAssets, Renderer, usize) {
@@ -118,7 +120,7 @@ fn box_sort_cycle(
     let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
     let cfg = RenderConfig {
         bounces: 1,
-        method: Method::SORT_CYCLE,
+        method,
         ..RenderConfig::new(w, h)
     };
     let r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
@@ -133,7 +135,7 @@ fn box_sort_cycle(
 fn sort_cycle_seeds_stay_in_their_blocks() {
     let gpu = Gpu::new();
     let (w, h) = (37u32, 21u32);
-    let (_, _, mut r, stride) = box_sort_cycle(&gpu, w, h);
+    let (_, _, mut r, stride) = box_sort_cycle(&gpu, Method::SORT_CYCLE, w, h);
     let init = r.initial_seeds().to_vec();
     let block_sets = |seeds: &[u32]| {
         let mut sets = std::collections::BTreeMap::<(u32, u32), Vec<u32>>::new();
@@ -160,12 +162,14 @@ fn sort_cycle_seeds_stay_in_their_blocks() {
 /// next light sample lands: in every 8x8 block, a pixel with a lower mask rank (the slice of
 /// the next frame) holds a seed whose block-net point at the next phase has a lower or equal
 /// Hilbert index, computed here from the sampler and the mask alone. With the view still again,
-/// the seeds rank by their recorded keys, and that order no longer holds everywhere.
+/// the seeds rank by their recorded keys, and that order no longer holds everywhere. The
+/// target stays on the screen here (`follow.rs` tests the one that moves with the image).
 #[test]
 fn a_moving_view_ranks_seeds_by_their_next_light_sample() {
     let gpu = Gpu::new();
     let (w, h) = (40u32, 24u32);
-    let (s, assets, mut r, stride) = box_sort_cycle(&gpu, w, h);
+    let screen = "sort-cycle:target=screen".parse().unwrap();
+    let (s, assets, mut r, stride) = box_sort_cycle(&gpu, screen, w, h);
     let samples = blueshift_sampling::Samples::default();
     let (n, frames) = (assets.stbn_n, assets.stbn_frames);
     // Pairs of pixels of one block whose seeds' next light samples are out of the mask's

@@ -1,6 +1,6 @@
-//! `sort-cycle:target=follow`: while the view moves, the sorting target is the STBN slice
-//! read where the image has moved it (the scene centre's projected motion, recomputed here
-//! from the cameras), and a still view sorts exactly as `sort-cycle` does.
+//! `sort-cycle` (its `target=follow`): while the view moves, the sorting target is the STBN
+//! slice read where the image has moved it (the scene centre's projected motion, recomputed
+//! here from the cameras), and a still view sorts exactly as `target=screen` does.
 use crate::Gpu;
 use blueshift_permute::{CYCLE_FRAMES, Screen, sample_key};
 use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
@@ -66,7 +66,7 @@ fn a_moving_view_sorts_against_the_slice_moved_with_the_image() {
     let gpu = Gpu::new();
     let (w, h) = (40u32, 24u32);
     let (s, assets) = box_scene();
-    let mut r = renderer(&gpu, &s, &assets, "sort-cycle:target=follow", w, h);
+    let mut r = renderer(&gpu, &s, &assets, "sort-cycle", w, h);
     let rows = Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
     let stride = r.initial_seeds().len() / rows;
     let n = assets.stbn_n;
@@ -93,14 +93,15 @@ fn a_moving_view_sorts_against_the_slice_moved_with_the_image() {
     assert!(screen_disorder > 0, "the target never left the screen");
 }
 
-/// With the view still, `target=follow` is `sort-cycle` bit for bit: same seeds, same images.
+/// With the view still, `target=follow` is `target=screen` bit for bit: same seeds, same
+/// images.
 #[test]
-fn a_still_view_sorts_as_sort_cycle() {
+fn a_still_view_sorts_as_the_screen_target() {
     let gpu = Gpu::new();
     let (w, h) = (24u32, 16u32);
     let (s, assets) = box_scene();
-    let mut a = renderer(&gpu, &s, &assets, "sort-cycle", w, h);
-    let mut b = renderer(&gpu, &s, &assets, "sort-cycle:target=follow", w, h);
+    let mut a = renderer(&gpu, &s, &assets, "sort-cycle:target=screen", w, h);
+    let mut b = renderer(&gpu, &s, &assets, "sort-cycle", w, h);
     for _ in 0..CYCLE_FRAMES + 3 {
         a.render_frame().unwrap();
         b.render_frame().unwrap();

@@ -194,6 +194,7 @@ const CYCLE: Permutation = Permutation {
     transport: Transport::None,
     points: Points::Cycle,
     mask: MaskDims::Motion,
+    target: Target::Follow,
     ..PAPER
 };
 

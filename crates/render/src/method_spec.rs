@@ -165,13 +165,13 @@ mod tests {
         let m: Method = "sort:transport=grid,key=demod".parse().expect("valid");
         assert_eq!(m.name(), "sort:key=demod,transport=grid");
         // Named after the nearest preset, whichever preset it was written from.
-        let near: Method = "sort:points=cycle,grouping=surfaces,mask=motion"
+        let near: Method = "sort:points=cycle,grouping=surfaces,mask=motion,target=follow"
             .parse()
             .expect("valid");
         assert_eq!(near.name(), "sort-cycle:grouping=surfaces");
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
-        let c: Method = "sort:points=cycle,grouping=still-surfaces,mask=motion"
+        let c: Method = "sort:points=cycle,grouping=still-surfaces,mask=motion,target=follow"
             .parse()
             .expect("valid");
         assert_eq!(c, Method::SORT_CYCLE);
@@ -192,9 +192,9 @@ mod tests {
                 .mask_dims(true)
         );
         assert_eq!((moving & !still).count_ones(), 4);
-        let follow: Method = "sort-cycle:target=follow".parse().expect("valid");
-        assert_eq!(follow.name(), "sort-cycle:target=follow");
-        assert!(follow.follows_target() && !c.follows_target());
+        let screen: Method = "sort-cycle:target=screen".parse().expect("valid");
+        assert_eq!(screen.name(), "sort-cycle:target=screen");
+        assert!(c.follows_target() && !screen.follows_target());
     }
 
     #[test]
