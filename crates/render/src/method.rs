@@ -105,7 +105,8 @@ pub enum Target {
     Screen,
     /// The spatio-temporal mask moves with the image (the scene centre's image motion), so a
     /// filter that follows the motion meets a surface point at one texel's temporally blue
-    /// values (only with [`Points::Cycle`]; `follow.rs`).
+    /// values (only with [`Points::Cycle`]; `follow.rs`). `sort-cycle`'s: ahead after TAA at
+    /// 1 and 2.5 px/frame, behind at 5 (docs/results.md).
     Follow,
 }
 
@@ -211,7 +212,8 @@ impl Method {
         ..HISTORY
     });
     /// Sorting within the surfaces of fixed blocks over a cycle of block-net points per seed,
-    /// against spatio-temporal mask slices ([`Points::Cycle`]).
+    /// against spatio-temporal mask slices ([`Points::Cycle`]) that move with the image
+    /// ([`Target::Follow`]).
     pub const SORT_CYCLE: Method = Method::Permute(CYCLE);
 
     /// The named presets `--method` offers, in the order of the documentation.
