@@ -2,7 +2,7 @@
 //! slice read where the image has moved it (the scene centre's projected motion, recomputed
 //! here from the cameras), and a still view sorts exactly as `target=screen` does.
 use crate::Gpu;
-use blueshift_permute::{CYCLE_FRAMES, Screen, sample_key};
+use blueshift_permute::{CYCLE_FRAMES, Screen, sample_key, sequence_mask_shift};
 use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
 use blueshift_scene::{Camera, Scene};
 
@@ -13,9 +13,21 @@ fn box_scene() -> (Scene, MethodAssets) {
 }
 
 fn renderer(gpu: &Gpu, s: &Scene, assets: &MethodAssets, method: &str, w: u32, h: u32) -> Renderer {
+    renderer_of(gpu, s, assets, method, (w, h), 0)
+}
+
+fn renderer_of(
+    gpu: &Gpu,
+    s: &Scene,
+    assets: &MethodAssets,
+    method: &str,
+    (w, h): (u32, u32),
+    sequence: u32,
+) -> Renderer {
     let cfg = RenderConfig {
         bounces: 1,
         method: method.parse::<Method>().unwrap(),
+        sequence,
         ..RenderConfig::new(w, h)
     };
     Renderer::new(gpu.dev(), s, assets, cfg).unwrap()
@@ -33,14 +45,14 @@ fn pixel_x(cam: &Camera, w: u32, h: u32, p: glam::Vec3) -> f64 {
 }
 
 /// Pairs of pixels of one 8x8 block whose seeds' next light samples are out of the order of
-/// the mask slice of the next frame read at column offset `ox` (after frame `traced`).
+/// the mask slice of the next frame read at offset `(ox, oy)` (after frame `traced`).
 fn out_of_order(
     seeds: &[u32],
     stride: usize,
     assets: &MethodAssets,
     (w, h): (u32, u32),
     traced: u64,
-    ox: u32,
+    (ox, oy): (u32, u32),
 ) -> usize {
     let samples = blueshift_sampling::Samples::default();
     let (n, frames) = (assets.stbn_n, assets.stbn_frames);
@@ -48,7 +60,7 @@ fn out_of_order(
     let layer = (next % u64::from(frames)) as usize * (n * n) as usize;
     let phase = (next % u64::from(CYCLE_FRAMES)) as u32;
     let at = |x: u32, y: u32| {
-        let rank = assets.stbn[layer + ((y % n) * n + (x + ox) % n) as usize];
+        let rank = assets.stbn[layer + (((y + oy) % n) * n + (x + ox) % n) as usize];
         (
             rank,
             sample_key(&samples, seeds[y as usize * stride + x as usize], phase),
@@ -60,13 +72,29 @@ fn out_of_order(
 /// A strafe to the right moves the image, and the target with it, to the left: after every
 /// moving frame each block ranks its seeds' next light samples in the order of the slice
 /// read at the accumulated motion of the scene centre (rounded), and not in the order of
-/// the slice where it stands on the screen once that motion is a few pixels.
+/// the slice where it stands on the screen once that motion is a few pixels. Sequence 5
+/// reads the volume at its own shift on top (`sequence_mask_shift`).
 #[test]
 fn a_moving_view_sorts_against_the_slice_moved_with_the_image() {
     let gpu = Gpu::new();
-    let (w, h) = (40u32, 24u32);
     let (s, assets) = box_scene();
-    let mut r = renderer(&gpu, &s, &assets, "sort-cycle", w, h);
+    let n = assets.stbn_n;
+    let (sx, sy) = sequence_mask_shift(5);
+    assert_ne!((sx % n, sy % n), (0, 0), "sequence 5 must move the volume");
+    for (sequence, (sx, sy)) in [(0, (0, 0)), (5, (sx, sy))] {
+        sorts_with_the_image(&gpu, &s, &assets, sequence, (sx % n, sy % n));
+    }
+}
+
+fn sorts_with_the_image(
+    gpu: &Gpu,
+    s: &Scene,
+    assets: &MethodAssets,
+    sequence: u32,
+    (sx, sy): (u32, u32),
+) {
+    let (w, h) = (40u32, 24u32);
+    let mut r = renderer_of(gpu, s, assets, "sort-cycle", (w, h), sequence);
     let rows = Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
     let stride = r.initial_seeds().len() / rows;
     let n = assets.stbn_n;
@@ -84,13 +112,20 @@ fn a_moving_view_sorts_against_the_slice_moved_with_the_image() {
         let shift = pixel_x(&cam, w, h, centre) - pixel_x(&cam0, w, h, centre);
         assert!(shift < 0.0, "the image moved right");
         let ox = (-(shift.round() as i64)).rem_euclid(i64::from(n)) as u32;
-        let bad = out_of_order(&seeds, stride, &assets, (w, h), traced, ox);
-        assert_eq!(bad, 0, "moving frame {traced}, offset {ox}");
+        let off = ((ox + sx) % n, sy);
+        let bad = out_of_order(&seeds, stride, assets, (w, h), traced, off);
+        assert_eq!(
+            bad, 0,
+            "sequence {sequence}, moving frame {traced}, offset {off:?}"
+        );
         if ox != 0 {
-            screen_disorder += out_of_order(&seeds, stride, &assets, (w, h), traced, 0);
+            screen_disorder += out_of_order(&seeds, stride, assets, (w, h), traced, (sx, sy));
         }
     }
-    assert!(screen_disorder > 0, "the target never left the screen");
+    assert!(
+        screen_disorder > 0,
+        "sequence {sequence}: the target never left the screen"
+    );
 }
 
 /// With the view still, `target=follow` is `target=screen` bit for bit: same seeds, same

@@ -41,6 +41,8 @@ mod lights_twin;
 #[cfg(test)]
 mod loop_stats;
 #[cfg(test)]
+mod mask_shift;
+#[cfg(test)]
 mod motion;
 #[cfg(test)]
 mod permute;

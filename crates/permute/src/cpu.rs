@@ -352,4 +352,21 @@ mod tests {
         assert_eq!(mask_offset(2, (48, 36), 64), (32, 8));
         assert_eq!(mask_offset(1 << 40, (48, 36), 64), (0, 0));
     }
+
+    /// Sequence 0 keeps the masks in place; sequences 1-8 (what eval reports) each draw
+    /// another window of a 64- and of a 128-texel mask, and the shift wraps.
+    #[test]
+    fn sequences_draw_distinct_mask_windows() {
+        use crate::{add_mask_shift, sequence_mask_shift};
+        assert_eq!(sequence_mask_shift(0), (0, 0));
+        for n in [64u32, 128] {
+            let mut seen: Vec<(u32, u32)> = (0..8)
+                .map(|s| add_mask_shift((0, 0), sequence_mask_shift(s), n))
+                .collect();
+            seen.sort_unstable();
+            seen.dedup();
+            assert_eq!(seen.len(), 8, "side {n}");
+        }
+        assert_eq!(add_mask_shift((63, 1), (u32::MAX, 66), 64), (62, 3));
+    }
 }

@@ -196,6 +196,37 @@ pub fn follow_offset(
     )
 }
 
+/// Where sequence `sequence` lays every blue-noise mask over the screen: a toroidal shift
+/// (pixels, to be taken modulo the mask's side) added to every mask read, so that independent
+/// sequences also draw independent windows of the masks. A mask window is a draw too: on one
+/// scene and path, five shifts of the same method spread by 0.01 per frame and 0.04 after TAA
+/// (docs/experiments.md), so sequences that share it understate the error of a mean.
+/// Sequence 0 (what `render` and `view` show) keeps the masks where they are.
+pub fn sequence_mask_shift(sequence: u32) -> (u32, u32) {
+    if sequence == 0 {
+        return (0, 0);
+    }
+    // Two rounds of a 32-bit integer hash (lowbias32), one per axis.
+    let hash = |mut x: u32| {
+        x ^= x >> 16;
+        x = x.wrapping_mul(0x7feb_352d);
+        x ^= x >> 15;
+        x = x.wrapping_mul(0x846c_a68b);
+        x ^ (x >> 16)
+    };
+    let h = hash(sequence);
+    (h, hash(h ^ 0x9e37_79b9))
+}
+
+/// `offset` moved by `shift` on a mask of side `n`.
+pub fn add_mask_shift(offset: (u32, u32), shift: (u32, u32), n: u32) -> (u32, u32) {
+    let n = n.max(1);
+    (
+        ((offset.0 % n) + shift.0 % n) % n,
+        ((offset.1 % n) + shift.1 % n) % n,
+    )
+}
+
 /// Mask offset of frame `frame`: exactly `frame * shift mod n` per axis.
 pub fn mask_offset(frame: u64, shift: (u32, u32), n: u32) -> (u32, u32) {
     let n = n as u64;

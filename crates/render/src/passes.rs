@@ -6,7 +6,10 @@ use crate::{Accumulation, RenderError, Renderer, Result, trace_params};
 use blueshift_device::{Buffer, Device};
 use blueshift_layout::params::{ImageParams, TraceParams};
 use blueshift_layout::variants::SortVariant;
-use blueshift_permute::{CycleInput, SortInput, SortParams, grid_offset, mask_offset, pair_phase};
+use blueshift_permute::{
+    CycleInput, SortInput, SortParams, add_mask_shift, grid_offset, mask_offset, pair_phase,
+    sequence_mask_shift,
+};
 use blueshift_sampling::Sampler;
 
 impl Renderer {
@@ -66,7 +69,24 @@ impl Renderer {
 
     /// The sorting pass's parameters for this frame: `offset` is the mask offset the frame
     /// sorts against (fixed grids); `moving`: the frame sees another view than the one before.
+    /// The sequence's mask shift comes on top (`sequence_mask_shift`).
     pub(crate) fn sort_params(
+        &self,
+        s: &SortPlan,
+        offset: (u32, u32),
+        moving: bool,
+    ) -> Result<SortParams> {
+        let sp = self.sort_params_unshifted(s, offset, moving)?;
+        let shift = sequence_mask_shift(self.cfg.sequence);
+        let (offset_x, offset_y) = add_mask_shift((sp.offset_x, sp.offset_y), shift, sp.mask_size);
+        Ok(SortParams {
+            offset_x,
+            offset_y,
+            ..sp
+        })
+    }
+
+    fn sort_params_unshifted(
         &self,
         s: &SortPlan,
         offset: (u32, u32),

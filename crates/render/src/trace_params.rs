@@ -5,7 +5,7 @@ use blueshift_layout::params::{
     TRACE_FLAG_ADVANCE_INDEX, TRACE_FLAG_DEMODULATE, TRACE_FLAG_MASK_ANCHORED,
     TRACE_FLAG_MASK_DIMS_SHIFT, TRACE_FLAG_NO_JITTER, TRACE_FLAG_SALT_FRAME, TraceParams,
 };
-use blueshift_permute::CYCLE_FRAMES;
+use blueshift_permute::{CYCLE_FRAMES, add_mask_shift, sequence_mask_shift};
 use blueshift_sampling::Sampler;
 
 impl Renderer {
@@ -27,6 +27,7 @@ impl Renderer {
             MASK_MODE_SPATIOTEMPORAL => (self.assets.stbn_n, self.assets.stbn_frames, (0, 0)),
             _ => (n, 1, (0, 0)),
         };
+        let off = add_mask_shift(off, sequence_mask_shift(c.sequence), mask_size);
         TraceParams {
             cam_origin: basis.position,
             cam_forward: basis.forward,
