@@ -199,7 +199,7 @@ pub fn follow_offset(
 /// Where sequence `sequence` lays every blue-noise mask over the screen: a toroidal shift
 /// (pixels, to be taken modulo the mask's side) added to every mask read, so that independent
 /// sequences also draw independent windows of the masks. A mask window is a draw too: on one
-/// scene and path, five shifts of the same method spread by 0.01 per frame and 0.04 after TAA
+/// scene and path, five shifts of the same method spread by 0.01 per frame and 0.05 after TAA
 /// (docs/experiments.md), so sequences that share it understate the error of a mean.
 /// Sequence 0 (what `render` and `view` show) keeps the masks where they are.
 pub fn sequence_mask_shift(sequence: u32) -> (u32, u32) {
