@@ -105,8 +105,8 @@ pub enum Target {
     Screen,
     /// The spatio-temporal mask moves with the image (the scene centre's image motion), so a
     /// filter that follows the motion meets a surface point at one texel's temporally blue
-    /// values (only with [`Points::Cycle`]; `follow.rs`). `sort-cycle`'s: ahead after TAA at
-    /// 1 and 2.5 px/frame, behind at 5 (docs/results.md).
+    /// values (only with [`Points::Cycle`]; `follow.rs`). `sort-cycle`'s: in the motion tables
+    /// (docs/results.md) ahead after TAA or within 0.01, level per frame.
     Follow,
 }
 
