@@ -12,11 +12,7 @@ fn box_scene() -> (Scene, MethodAssets) {
     (s, MethodAssets::load(&default_assets_dir()).unwrap())
 }
 
-fn renderer(gpu: &Gpu, s: &Scene, assets: &MethodAssets, method: &str, w: u32, h: u32) -> Renderer {
-    renderer_of(gpu, s, assets, method, (w, h), 0)
-}
-
-fn renderer_of(
+fn renderer(
     gpu: &Gpu,
     s: &Scene,
     assets: &MethodAssets,
@@ -94,7 +90,7 @@ fn sorts_with_the_image(
     (sx, sy): (u32, u32),
 ) {
     let (w, h) = (40u32, 24u32);
-    let mut r = renderer_of(gpu, s, assets, "sort-cycle", (w, h), sequence);
+    let mut r = renderer(gpu, s, assets, "sort-cycle", (w, h), sequence);
     let rows = Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
     let stride = r.initial_seeds().len() / rows;
     let n = assets.stbn_n;
@@ -135,8 +131,8 @@ fn a_still_view_sorts_as_the_screen_target() {
     let gpu = Gpu::new();
     let (w, h) = (24u32, 16u32);
     let (s, assets) = box_scene();
-    let mut a = renderer(&gpu, &s, &assets, "sort-cycle:target=screen", w, h);
-    let mut b = renderer(&gpu, &s, &assets, "sort-cycle", w, h);
+    let mut a = renderer(&gpu, &s, &assets, "sort-cycle:target=screen", (w, h), 0);
+    let mut b = renderer(&gpu, &s, &assets, "sort-cycle", (w, h), 0);
     for _ in 0..CYCLE_FRAMES + 3 {
         a.render_frame().unwrap();
         b.render_frame().unwrap();

@@ -8,7 +8,7 @@ use blueshift_scene::Scene;
 
 /// The trace pass's mask offset (and the mask's side) after one frame and a move of the
 /// camera when `moving`.
-fn mask_offset(
+fn trace_mask_offset(
     gpu: &Gpu,
     s: &Scene,
     a: &MethodAssets,
@@ -58,8 +58,8 @@ fn each_sequence_reads_the_trace_masks_at_its_own_shift() {
     }
     for m in methods {
         for moving in [false, true] {
-            let (x0, y0, n) = mask_offset(&gpu, &s, &a, m, 0, moving);
-            let (x5, y5, n5) = mask_offset(&gpu, &s, &a, m, 5, moving);
+            let (x0, y0, n) = trace_mask_offset(&gpu, &s, &a, m, 0, moving);
+            let (x5, y5, n5) = trace_mask_offset(&gpu, &s, &a, m, 5, moving);
             assert_eq!(n, n5);
             let what = format!("{} moving {moving}", m.name());
             assert_ne!(

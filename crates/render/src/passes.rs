@@ -118,9 +118,10 @@ impl Renderer {
                     .cycle_params(self.frame, n, t, self.accumulated, sample_keys);
                 // `target=follow`: the volume moves with the image (one frame behind it: a
                 // constant lag, which does not matter to a pattern that only has to move along).
-                let offset = match self.cfg.method.follows_target() {
-                    true => self.follow.offset(n),
-                    false => (0, 0),
+                let offset = if self.cfg.method.follows_target() {
+                    self.follow.offset(n)
+                } else {
+                    (0, 0)
                 };
                 let sp = SortParams {
                     mask_size: n,
