@@ -42,12 +42,12 @@ float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
     if (P.mask_mode != MASK_MODE_NONE && from_mask) {
         uint n = P.mask_size;
         uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) + dim * uvec2(37u, 71u)) % n;
-        uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.frame % P.mask_frames : 0u;
+        uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.mask_step : 0u;
         uint rank = mask[(layer * n + q.y) * n + q.x];
         x = fract((float(rank) + 0.5) / float(n * n) + float(s) * GOLDEN);
         if (P.mask_mode == MASK_MODE_ROTATE) {
-            // Rotated in 32-bit fixed point: the frame's R2 step, exact for any frame.
-            uint r = P.frame * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
+            // Rotated in 32-bit fixed point: mask_step R2 steps, exact for any count.
+            uint r = P.mask_step * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
             x = fract(x + to_unit(r));
         }
     }

@@ -87,3 +87,65 @@ fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
         "a moving view's marked pixels kept the mask's jitter"
     );
 }
+
+/// A still view's jitter runs through the rotated mask frame after frame, past the point
+/// cycle: `sort-cycle` jitters exactly as `mask-rot` does in every frame, including those
+/// after the sampler's index has wrapped (a black sphere against a white sky: the estimate
+/// is whether the jittered ray misses the sphere, a function of the jitter alone).
+#[test]
+fn a_still_jitter_runs_on_past_the_point_cycle() {
+    use crate::trace::{scene, sphere};
+    use blueshift_layout::params::CYCLE_FRAMES;
+    use blueshift_render::Method;
+    use blueshift_scene::{Camera, Material};
+    use glam::Vec3;
+    let gpu = Gpu::new();
+    let black = Material {
+        base_color: [0.0, 0.0, 0.0, 1.0],
+        metallic: 0.0,
+        specular: 0.0,
+        ..Material::default()
+    };
+    let cam = Camera {
+        position: Vec3::new(0.0, 0.0, 4.0),
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        yfov: 0.6,
+    };
+    let s = scene(sphere(0, 16, 32), vec![black], Vec3::ONE, cam);
+    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
+    let frames = CYCLE_FRAMES as usize + 4;
+    let run = |method: Method| {
+        let cfg = RenderConfig {
+            bounces: 1,
+            method,
+            sequence: 3,
+            ..RenderConfig::new(24, 24)
+        };
+        let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+        (0..frames)
+            .map(|_| {
+                r.render_frame().unwrap();
+                let e = r.read_estimate().unwrap();
+                e.iter().map(|v| v[1].to_bits()).collect::<Vec<u32>>()
+            })
+            .collect::<Vec<_>>()
+    };
+    let (cycle, rot) = (run(Method::SORT_CYCLE), run(Method::MaskRot));
+    let edge = cycle[0]
+        .iter()
+        .filter(|&&v| v != 0 && v != 1.0f32.to_bits())
+        .count();
+    assert_eq!(edge, 0, "the estimate is not the jitter's hit or miss");
+    for f in 0..frames {
+        assert!(
+            cycle[f] == rot[f],
+            "frame {f}: the jitter is not the rotated mask's"
+        );
+    }
+    let k = CYCLE_FRAMES as usize;
+    assert!(
+        cycle[1] != cycle[1 + k],
+        "the jitter repeats with the point cycle"
+    );
+}

@@ -158,8 +158,11 @@ gpu_struct! {
         /// `MASK_MODE_*`: whether the first dimensions come from a blue-noise mask.
         pub mask_mode: u32,
         pub mask_size: u32,
-        /// Slices of a spatio-temporal mask (1 for a 2D mask).
-        pub mask_frames: u32,
+        /// The mask's state in this frame: the slice of a spatio-temporal mask, or the
+        /// number of R2 steps a rotating mask's values have turned (0 for a shifted 2D mask).
+        /// It counts frames, not `frame`, which repeats with a point cycle: a rotating mask's
+        /// pixel then runs on through new jitter points instead of repeating 16.
+        pub mask_step: u32,
         pub mask_offset_x: u32,
         pub mask_offset_y: u32,
         /// Sensor shift in pixels: pixel p samples the view at p + view_offset.

@@ -22,10 +22,15 @@ impl Renderer {
             | m.primary_flags(moving);
         let mask_mode = mask_mode_of(c, moving);
         // The mode alone says which mask and offsets: whichever method chose it.
-        let (mask_size, mask_frames, off) = match mask_mode {
-            MASK_MODE_2D => (n, 1, r2_offset(self.frame, n)),
-            MASK_MODE_SPATIOTEMPORAL => (self.assets.stbn_n, self.assets.stbn_frames, (0, 0)),
-            _ => (n, 1, (0, 0)),
+        let (mask_size, mask_step, off) = match mask_mode {
+            MASK_MODE_2D => (n, 0, r2_offset(self.frame, n)),
+            MASK_MODE_SPATIOTEMPORAL => {
+                let slices = u64::from(self.assets.stbn_frames.max(1));
+                (self.assets.stbn_n, (self.frame % slices) as u32, (0, 0))
+            }
+            // Steps of a 32-bit fixed-point rotation: wrapping at 2^32 is exact.
+            MASK_MODE_ROTATE => (n, self.frame as u32, (0, 0)),
+            _ => (n, 0, (0, 0)),
         };
         let off = add_mask_shift(off, sequence_mask_shift(c.sequence), mask_size);
         TraceParams {
@@ -50,7 +55,7 @@ impl Renderer {
             flags,
             mask_mode,
             mask_size,
-            mask_frames,
+            mask_step,
             mask_offset_x: off.0,
             mask_offset_y: off.1,
             view_offset: glam::Vec2::new(self.view_offset.0, self.view_offset.1),

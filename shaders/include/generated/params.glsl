@@ -43,7 +43,7 @@ struct TraceParams {
     uint flags; // offset 84, size 4
     uint mask_mode; // offset 88, size 4
     uint mask_size; // offset 92, size 4
-    uint mask_frames; // offset 96, size 4
+    uint mask_step; // offset 96, size 4
     uint mask_offset_x; // offset 100, size 4
     uint mask_offset_y; // offset 104, size 4
     vec2 view_offset; // offset 108, size 8
