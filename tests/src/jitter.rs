@@ -1,9 +1,10 @@
 //! Where `sort-cycle` takes its anti-aliasing jitter: from the mask, except on pixels whose
 //! previous primary hit was textured (`TRACE_FLAG_SEED_JITTER_ON_TEXTURES`), which take the
-//! seed's, as `mask=none` does.
+//! seed's, as `mask=none` does; and with a still view the rotating mask's jitter walks R2
+//! per pixel (`mask_jitter` is its CPU twin).
 use crate::Gpu;
 use blueshift_layout::params::PRIMARY_TEXTURED;
-use blueshift_render::{RenderConfig, Renderer, default_assets_dir};
+use blueshift_render::{MethodAssets, RenderConfig, Renderer, default_assets_dir};
 use blueshift_scene::{Scene, SceneGpu};
 
 fn textured_scene() -> Scene {
@@ -88,17 +89,36 @@ fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
     );
 }
 
-/// A still view's jitter runs through the rotated mask frame after frame, past the point
-/// cycle: `sort-cycle` jitters exactly as `mask-rot` does in every frame, including those
-/// after the sampler's index has wrapped (a black sphere against a white sky: the estimate
-/// is whether the jittered ray misses the sphere, a function of the jitter alone).
+/// The jitter a rotating mask gives pixel `px` after `step` frames (CPU twin of path.glsl's
+/// `sample_dim` for dimensions 0 and 1, one sample per pixel): the mask's value at the
+/// dimension's offset, turned by `step` R2 steps. Fractions in f32 as the shader computes
+/// them.
+fn mask_jitter(a: &MethodAssets, off: (u32, u32), px: (u32, u32), step: u32) -> [f32; 2] {
+    use blueshift_sampling::{r2, rng::to_unit};
+    let n = a.n;
+    [0u32, 1].map(|dim| {
+        let q = ((px.0 + off.0 + dim * 37) % n, (px.1 + off.1 + dim * 71) % n);
+        let rank = a.mask[(q.1 * n + q.0) as usize];
+        let x = (rank as f32 + 0.5) / (n * n) as f32;
+        let x = x - x.floor();
+        let y = x + to_unit(step.wrapping_mul(r2::ALPHA[dim as usize]));
+        y - y.floor()
+    })
+}
+
+/// A still view's jitter is the rotating mask's, frame after frame and past the point cycle
+/// (the sampler's index repeats every 16 frames, the jitter's walk does not), for
+/// `sort-cycle` as for `mask-rot`. The scene is a
+/// black square on a white sky, so each pixel's estimate says whether its jittered ray hit
+/// the square, which the CPU decides from the twin's jitter (rays within float rounding of
+/// the square's border are skipped).
 #[test]
-fn a_still_jitter_runs_on_past_the_point_cycle() {
-    use crate::trace::{assets, scene, sphere};
+fn a_still_jitter_walks_its_sequence_per_pixel() {
+    use crate::trace::{assets, scene};
     use blueshift_layout::params::CYCLE_FRAMES;
     use blueshift_render::Method;
-    use blueshift_scene::{Camera, Material};
-    use glam::Vec3;
+    use blueshift_scene::{Camera, Material, Triangle};
+    use glam::{Vec2, Vec3};
     let gpu = Gpu::new();
     let black = Material {
         base_color: [0.0, 0.0, 0.0, 1.0],
@@ -106,44 +126,72 @@ fn a_still_jitter_runs_on_past_the_point_cycle() {
         specular: 0.0,
         ..Material::default()
     };
+    let c = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Vec3::new(x, y, 0.0));
+    let square = [[c[0], c[1], c[2]], [c[0], c[2], c[3]]]
+        .map(|positions| Triangle {
+            positions,
+            normals: [Vec3::Z; 3],
+            uvs: [Vec2::ZERO; 3],
+            material: 0,
+        })
+        .to_vec();
     let cam = Camera {
-        position: Vec3::new(0.0, 0.0, 4.0),
+        position: Vec3::new(0.0, 0.0, 3.0),
         target: Vec3::ZERO,
         up: Vec3::Y,
-        yfov: 0.6,
+        yfov: 0.9,
     };
-    let s = scene(sphere(0, 16, 32), vec![black], Vec3::ONE, cam);
+    let s = scene(square, vec![black], Vec3::ONE, cam);
     let a = assets();
-    let frames = CYCLE_FRAMES as usize + 4;
-    let run = |method: Method| {
+    let (w, h) = (24u32, 24u32);
+    let frames = CYCLE_FRAMES + 4;
+    for method in [Method::SORT_CYCLE, Method::MaskRot] {
         let cfg = RenderConfig {
             bounces: 1,
             method,
             sequence: 3,
-            ..RenderConfig::new(24, 24)
+            ..RenderConfig::new(w, h)
         };
         let mut r = Renderer::new(gpu.dev(), &s, &a, cfg).unwrap();
-        (0..frames)
-            .map(|_| {
-                r.render_frame().unwrap();
-                let e = r.read_estimate().unwrap();
-                e.iter().map(|v| v[1].to_bits()).collect::<Vec<u32>>()
-            })
-            .collect::<Vec<_>>()
-    };
-    let (cycle, rot) = (run(Method::SORT_CYCLE), run(Method::MaskRot));
-    let (miss, hit) = (1.0f32.to_bits(), 0.0f32.to_bits());
-    let neither = cycle[0].iter().filter(|&&v| v != hit && v != miss).count();
-    assert_eq!(neither, 0, "the estimate is not the jitter's hit or miss");
-    for f in 0..frames {
+        let (mut checked, mut changed) = (0, 0);
+        let mut first = vec![None; (w * h) as usize];
+        for step in 0..frames {
+            let tp = r.trace_params();
+            r.render_frame().unwrap();
+            let e = r.read_estimate().unwrap();
+            for (i, v) in e.iter().enumerate() {
+                let px = (i as u32 % w, i as u32 / w);
+                let off = (tp.mask_offset_x, tp.mask_offset_y);
+                let j = mask_jitter(&a, off, px, step);
+                let ndc = Vec2::new(
+                    (px.0 as f32 + tp.view_offset.x + j[0]) / tp.view_size.x * 2.0 - 1.0,
+                    (px.1 as f32 + tp.view_offset.y + j[1]) / tp.view_size.y * 2.0 - 1.0,
+                );
+                let dir = (tp.cam_forward + ndc.x * tp.cam_right - ndc.y * tp.cam_up).normalize();
+                let p = tp.cam_origin - dir * (tp.cam_origin.z / dir.z);
+                let border = (p.x.abs() - 1.0).abs().min((p.y.abs() - 1.0).abs());
+                if border < 1e-3 {
+                    continue;
+                }
+                let hit = p.x.abs() < 1.0 && p.y.abs() < 1.0;
+                let want = if hit { 0.0 } else { 1.0 };
+                assert_eq!(v[1], want, "{} frame {step} pixel {px:?}", method.name());
+                checked += 1;
+                match first[i] {
+                    None => first[i] = Some(hit),
+                    Some(h0) if h0 != hit => changed += 1,
+                    _ => {}
+                }
+            }
+        }
         assert!(
-            cycle[f] == rot[f],
-            "frame {f}: the jitter is not the rotated mask's"
+            changed > 0,
+            "{}: no jitter crossed the square's border",
+            method.name()
+        );
+        assert!(
+            checked > (w * h * frames) as usize * 9 / 10,
+            "{checked} checked"
         );
     }
-    let k = CYCLE_FRAMES as usize;
-    assert!(
-        cycle[1] != cycle[1 + k],
-        "the jitter repeats with the point cycle"
-    );
 }
