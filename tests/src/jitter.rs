@@ -167,7 +167,14 @@ fn a_still_jitter_walks_its_sequence_per_pixel() {
                     (px.0 as f32 + tp.view_offset.x + j[0]) / tp.view_size.x * 2.0 - 1.0,
                     (px.1 as f32 + tp.view_offset.y + j[1]) / tp.view_size.y * 2.0 - 1.0,
                 );
-                let dir = (tp.cam_forward + ndc.x * tp.cam_right - ndc.y * tp.cam_up).normalize();
+                let basis = blueshift_scene::CameraBasis {
+                    position: tp.cam_origin,
+                    forward: tp.cam_forward,
+                    right: tp.cam_right,
+                    up: tp.cam_up,
+                };
+                // The trace's NDC y grows downwards; the basis' upwards.
+                let dir = basis.direction(ndc.x, -ndc.y);
                 let p = tp.cam_origin - dir * (tp.cam_origin.z / dir.z);
                 let border = (p.x.abs() - 1.0).abs().min((p.y.abs() - 1.0).abs());
                 if border < 1e-3 {
