@@ -46,8 +46,11 @@ float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
         uint rank = mask[(layer * n + q.y) * n + q.x];
         x = fract((float(rank) + 0.5) / float(n * n) + float(s) * GOLDEN);
         if (P.mask_mode == MASK_MODE_ROTATE) {
-            // Rotated in 32-bit fixed point: mask_step R2 steps, exact for any count.
-            uint r = P.mask_step * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
+            // Rotated in 32-bit fixed point: mask_step R2 steps, exact for any count, or for
+            // the jitter with TRACE_FLAG_SOBOL_JITTER point mask_step of a Sobol sequence.
+            bool sobol_walk = dim < 2u && (P.flags & TRACE_FLAG_SOBOL_JITTER) != 0u;
+            uint r = sobol_walk ? sobol(P.mask_step, dim)
+                                : P.mask_step * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
             x = fract(x + to_unit(r));
         }
     }
