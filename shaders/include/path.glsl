@@ -27,6 +27,9 @@ uvec2 g_mask_px;
 // from the pixel's previous primary hit); g_textured0: this frame's primary hit is textured.
 bool g_seed_jitter;
 bool g_textured0;
+// TRACE_FLAG_SOBOL_JITTER on a pixel whose previous primary hit was untextured (set by main):
+// the jitter walks Sobol's points instead of R2's.
+bool g_sobol_jitter;
 #endif
 
 // Sample dimension `dim` of sample `index` for this pixel: from the mask in the mask modes
@@ -46,8 +49,11 @@ float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
         uint rank = mask[(layer * n + q.y) * n + q.x];
         x = fract((float(rank) + 0.5) / float(n * n) + float(s) * GOLDEN);
         if (P.mask_mode == MASK_MODE_ROTATE) {
-            // Rotated in 32-bit fixed point: mask_step R2 steps, exact for any count.
-            uint r = P.mask_step * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
+            // Rotated in 32-bit fixed point: mask_step R2 steps, exact for any count, or for
+            // the jitter with TRACE_FLAG_SOBOL_JITTER point mask_step of a Sobol sequence.
+            bool sobol_walk = dim < 2u && g_sobol_jitter;
+            uint r = sobol_walk ? sobol(P.mask_step, dim)
+                                : P.mask_step * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
             x = fract(x + to_unit(r));
         }
     }

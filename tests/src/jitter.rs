@@ -1,7 +1,9 @@
 //! Where `sort-cycle` takes its anti-aliasing jitter: from the mask, except on pixels whose
 //! previous primary hit was textured (`TRACE_FLAG_SEED_JITTER_ON_TEXTURES`), which take the
-//! seed's, as `mask=none` does; and with a still view the rotating mask's jitter walks R2
-//! per pixel (`mask_jitter` is its CPU twin).
+//! seed's, as `mask=none` does; and with a still view the rotating mask's jitter walks a
+//! sequence per pixel (`mask_jitter` is its CPU twin): `sort-cycle`'s Sobol's points where the
+//! previous primary hit was untextured (`TRACE_FLAG_SOBOL_JITTER`), R2's elsewhere and for
+//! `mask-rot`.
 use crate::Gpu;
 use blueshift_layout::params::PRIMARY_TEXTURED;
 use blueshift_render::{MethodAssets, RenderConfig, Renderer, default_assets_dir};
@@ -49,8 +51,9 @@ fn primary_flags_mark_textured_primary_hits() {
     );
 }
 
-/// While the view moves, marked pixels take another jitter than unmarked ones (the seed's);
-/// with a still view the marks change nothing (the mask's rotated jitter everywhere).
+/// Marked pixels take another jitter than unmarked ones: the seed's while the view moves, the
+/// mask's R2 walk instead of Sobol's while it stands still (each walk is checked point by
+/// point in `a_still_jitter_walks_its_sequence_per_pixel`).
 #[test]
 fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
     let gpu = Gpu::new();
@@ -80,8 +83,8 @@ fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
             .collect::<Vec<u32>>()
     };
     assert!(
-        frame(PRIMARY_TEXTURED, false) == frame(0, false),
-        "a still view's jitter depends on the marks"
+        frame(PRIMARY_TEXTURED, false) != frame(0, false),
+        "a still view's marked pixels kept the Sobol walk"
     );
     assert!(
         frame(PRIMARY_TEXTURED, true) != frame(0, true),
@@ -91,33 +94,46 @@ fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
 
 /// The jitter a rotating mask gives pixel `px` after `step` frames (CPU twin of path.glsl's
 /// `sample_dim` for dimensions 0 and 1, one sample per pixel): the mask's value at the
-/// dimension's offset, turned by `step` R2 steps. Fractions in f32 as the shader computes
-/// them.
-fn mask_jitter(a: &MethodAssets, off: (u32, u32), px: (u32, u32), step: u32) -> [f32; 2] {
-    use blueshift_sampling::{r2, rng::to_unit};
+/// dimension's offset, turned by `step` R2 steps, or with `sobol_walk` shifted by Sobol point
+/// `step`. Fractions in f32 as the shader computes them.
+fn mask_jitter(
+    a: &MethodAssets,
+    off: (u32, u32),
+    px: (u32, u32),
+    step: u32,
+    sobol_walk: bool,
+) -> [f32; 2] {
+    use blueshift_sampling::{r2, rng::to_unit, sobol};
     let n = a.n;
+    let dirs = sobol::direction_numbers();
     [0u32, 1].map(|dim| {
         let q = ((px.0 + off.0 + dim * 37) % n, (px.1 + off.1 + dim * 71) % n);
         let rank = a.mask[(q.1 * n + q.0) as usize];
         let x = (rank as f32 + 0.5) / (n * n) as f32;
         let x = x - x.floor();
-        let y = x + to_unit(step.wrapping_mul(r2::ALPHA[dim as usize]));
+        let turn = match sobol_walk {
+            true => sobol::sobol(step, dim, &dirs),
+            false => step.wrapping_mul(r2::ALPHA[dim as usize]),
+        };
+        let y = x + to_unit(turn);
         y - y.floor()
     })
 }
 
 /// A still view's jitter is the rotating mask's, frame after frame and past the point cycle
-/// (the sampler's index repeats every 16 frames, the jitter's walk does not), for
-/// `sort-cycle` as for `mask-rot`. The scene is a
-/// black square on a white sky, so each pixel's estimate says whether its jittered ray hit
-/// the square, which the CPU decides from the twin's jitter (rays within float rounding of
-/// the square's border are skipped).
+/// (the sampler's index repeats every 16 frames, the jitter's walk does not): `sort-cycle`'s
+/// walks Sobol's points on a pixel whose previous primary hit was untextured and R2's on one
+/// whose hit was textured; `mask-rot`'s walks R2's everywhere. The scene is a black square
+/// (plain, or with a black texture) on a white sky, so each pixel's estimate says whether its
+/// jittered ray hit the square, which the CPU decides from the twin's jitter (rays within
+/// float rounding of the square's border are skipped); the previous frame's estimate says
+/// whether the pixel's previous hit was the square.
 #[test]
 fn a_still_jitter_walks_its_sequence_per_pixel() {
     use crate::trace::{assets, scene};
     use blueshift_layout::params::CYCLE_FRAMES;
     use blueshift_render::Method;
-    use blueshift_scene::{Camera, Material, Triangle};
+    use blueshift_scene::{Camera, Image, Material, Texture, Triangle, Wrap};
     use glam::{Vec2, Vec3};
     let gpu = Gpu::new();
     let black = Material {
@@ -141,28 +157,60 @@ fn a_still_jitter_walks_its_sequence_per_pixel() {
         up: Vec3::Y,
         yfov: 0.9,
     };
-    let s = scene(square, vec![black], Vec3::ONE, cam);
+    let plain = scene(square.clone(), vec![black.clone()], Vec3::ONE, cam);
+    let textured_black = Material {
+        base_color: [1.0; 4],
+        base_color_texture: Some(0),
+        ..black
+    };
+    let textured = Scene {
+        textures: vec![Texture {
+            image: 0,
+            wrap_s: Wrap::Repeat,
+            wrap_t: Wrap::Repeat,
+            nearest: true,
+        }],
+        images: vec![Image {
+            name: None,
+            width: 1,
+            height: 1,
+            rgba8: vec![0, 0, 0, 255],
+        }],
+        ..scene(square, vec![textured_black], Vec3::ONE, cam)
+    };
     let a = assets();
     let (w, h) = (24u32, 24u32);
     let frames = CYCLE_FRAMES + 4;
-    for method in [Method::SORT_CYCLE, Method::MaskRot] {
+    let cases = [
+        (Method::SORT_CYCLE, &plain, true),
+        (Method::SORT_CYCLE, &textured, true),
+        (Method::MaskRot, &plain, false),
+    ];
+    for (method, s, sobol_walk) in cases {
+        let square_textured = !s.textures.is_empty();
         let cfg = RenderConfig {
             bounces: 1,
             method,
             sequence: 3,
             ..RenderConfig::new(w, h)
         };
-        let mut r = Renderer::new(gpu.dev(), &s, &a, cfg).unwrap();
-        let (mut checked, mut changed) = (0, 0);
+        let mut r = Renderer::new(gpu.dev(), s, &a, cfg).unwrap();
+        let (mut checked, mut changed, mut r2_walks) = (0, 0, 0);
         let mut first = vec![None; (w * h) as usize];
+        // Whether each pixel's previous primary hit was the square (none before frame 0).
+        let mut prev_hit = vec![false; (w * h) as usize];
         for step in 0..frames {
             let tp = r.trace_params();
             r.render_frame().unwrap();
             let e = r.read_estimate().unwrap();
+            let hits: Vec<bool> = e.iter().map(|v| v[1] == 0.0).collect();
             for (i, v) in e.iter().enumerate() {
                 let px = (i as u32 % w, i as u32 / w);
                 let off = (tp.mask_offset_x, tp.mask_offset_y);
-                let j = mask_jitter(&a, off, px, step);
+                // The R2 walk on a pixel whose previous primary hit was textured.
+                let sobol_here = sobol_walk && !(square_textured && prev_hit[i]);
+                r2_walks += usize::from(sobol_walk && !sobol_here);
+                let j = mask_jitter(&a, off, px, step, sobol_here);
                 let ndc = Vec2::new(
                     (px.0 as f32 + tp.view_offset.x + j[0]) / tp.view_size.x * 2.0 - 1.0,
                     (px.1 as f32 + tp.view_offset.y + j[1]) / tp.view_size.y * 2.0 - 1.0,
@@ -190,7 +238,14 @@ fn a_still_jitter_walks_its_sequence_per_pixel() {
                     _ => {}
                 }
             }
+            prev_hit = hits;
         }
+        assert_eq!(
+            r2_walks > 0,
+            sobol_walk && square_textured,
+            "{}: {r2_walks} R2 walks among Sobol's",
+            method.name()
+        );
         assert!(
             changed > 0,
             "{}: no jitter crossed the square's border",

@@ -20,6 +20,7 @@ pub fn all() -> Vec<(&'static str, String)> {
                 .constant("TRACE_FLAG_NO_JITTER", params::TRACE_FLAG_NO_JITTER)
                 .constant("TRACE_FLAG_DEMODULATE", params::TRACE_FLAG_DEMODULATE)
                 .constant("TRACE_FLAG_MASK_ANCHORED", params::TRACE_FLAG_MASK_ANCHORED)
+                .constant("TRACE_FLAG_SOBOL_JITTER", params::TRACE_FLAG_SOBOL_JITTER)
                 .constant(
                     "TRACE_FLAG_RECORD_PRIMARY",
                     params::TRACE_FLAG_RECORD_PRIMARY,

@@ -201,6 +201,14 @@ pub const TRACE_FLAG_RECORD_PRIMARY: u32 = 32;
 /// sort act on the error itself. At a depth edge the gradient keeps its sign and the mask's
 /// jitter stays blue.
 pub const TRACE_FLAG_SEED_JITTER_ON_TEXTURES: u32 = 64;
+/// `TraceParams::flags`: a rotating mask's jitter dimensions (0 and 1) walk the first two
+/// dimensions of a Sobol sequence, shifted by the mask's values (a Cranley-Patterson
+/// rotation, so each frame is the mask moved by one constant), instead of R2, on pixels whose
+/// previous primary hit was untextured (`primary_flags`): each such pixel's jitter is a
+/// (0,2)-sequence over frames, whose 1D projections stratify a pixel that an edge crosses
+/// better than R2's (R2's x step is close to 3/4, so its x values cluster in fours). Textured
+/// pixels keep R2. Only the jitter: every pair of dimensions would walk the same two.
+pub const TRACE_FLAG_SOBOL_JITTER: u32 = 128;
 /// `primary_flags` bit: the primary hit's material has a texture.
 pub const PRIMARY_TEXTURED: u32 = 1;
 /// `TraceParams::flags`: bits from this one up select which of the first `MASK_DIMS`

@@ -87,10 +87,11 @@ pub enum MaskDims {
     /// None: the seeds carry every dimension.
     None,
     /// The camera jitter: a seed's coverage of an edge is a property of the pixel it lands on,
-    /// not of the seed, so no key predicts it; the mask makes it blue instead. Rotated by R2
-    /// every frame while the view stands still (each pixel's jitter then converges like an R2
-    /// sequence), shifted by R2 while it moves (`MASK_MODE_2D`; `MASK_MODE_ROTATE`'s per-pixel
-    /// sequence means nothing to a filter that follows the surface).
+    /// not of the seed, so no key predicts it; the mask makes it blue instead. While the view
+    /// stands still its values turn along a Sobol (0,2)-sequence on untextured pixels
+    /// (`TRACE_FLAG_SOBOL_JITTER`) and along R2 on textured ones, so each pixel's jitter
+    /// converges; while it moves they are shifted by R2 (`MASK_MODE_2D`: a per-pixel sequence
+    /// means nothing to a filter that follows the surface).
     Jitter,
     /// [`MaskDims::Jitter`], and while the view moves also the first vertex's BSDF sample:
     /// keys recorded a cycle ago at another place no longer predict it, and the mask's blue
@@ -395,22 +396,23 @@ impl Method {
         }
     }
 
-    /// The trace pass's `TRACE_FLAG_RECORD_PRIMARY` and `TRACE_FLAG_SEED_JITTER_ON_TEXTURES`
-    /// bits: a method whose jitter comes from the mask records which pixels show a textured
-    /// surface, and while the view moves those pixels take the seed's jitter instead (on
+    /// The trace pass's flags for a jitter taken from the mask: such a method records which
+    /// pixels show a textured surface (`TRACE_FLAG_RECORD_PRIMARY`), and while the view moves
+    /// those pixels take the seed's jitter instead (`TRACE_FLAG_SEED_JITTER_ON_TEXTURES`: on
     /// textures the mask's shifted jitter is worse than the seeds' sorted block nets). With a
-    /// still view the mask's rotated jitter stays everywhere: each pixel's jitter then runs
-    /// through R2 points, which converges on textures too.
-    pub fn primary_flags(self, moving: bool) -> u32 {
+    /// still view the mask's rotated jitter stays everywhere: it walks a (0,2)-sequence per
+    /// pixel where the previous primary hit was untextured (`TRACE_FLAG_SOBOL_JITTER`), R2
+    /// on textured pixels.
+    pub fn jitter_flags(self, moving: bool) -> u32 {
         use blueshift_layout::params::{
-            TRACE_FLAG_RECORD_PRIMARY, TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
+            TRACE_FLAG_RECORD_PRIMARY, TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SOBOL_JITTER,
         };
         if self.mask_dims(moving) & JITTER_DIMS == 0 {
             0
         } else if moving {
             TRACE_FLAG_RECORD_PRIMARY | TRACE_FLAG_SEED_JITTER_ON_TEXTURES
         } else {
-            TRACE_FLAG_RECORD_PRIMARY
+            TRACE_FLAG_RECORD_PRIMARY | TRACE_FLAG_SOBOL_JITTER
         }
     }
 

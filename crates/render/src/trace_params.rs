@@ -19,7 +19,7 @@ impl Renderer {
         let moving = self.moving();
         let flags = trace_flags(c)
             | m.mask_dims(moving) << TRACE_FLAG_MASK_DIMS_SHIFT
-            | m.primary_flags(moving);
+            | m.jitter_flags(moving);
         let mask_mode = mask_mode_of(c, moving);
         // The mode alone says which mask and offsets: whichever method chose it.
         let (mask_size, mask_step, off) = match mask_mode {
@@ -204,7 +204,7 @@ mod tests {
                     assert_eq!(dims & 3, 3, "{name}: the jitter comes first");
                 }
                 // Textured pixels' jitter is chosen only where the mask drives the jitter.
-                assert_eq!(m.primary_flags(moving) != 0, dims & 3 != 0, "{name}");
+                assert_eq!(m.jitter_flags(moving) != 0, dims & 3 != 0, "{name}");
             }
         }
         assert!(some > 0, "no preset leaves dimensions to the mask");
