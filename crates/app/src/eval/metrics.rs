@@ -23,6 +23,11 @@ pub struct Split {
     pub edge: f64,
     /// Emitter-free pixels ([`Masks::clean`]).
     pub clean: f64,
+    /// The emitter-free edge pixels' part of `clean`: their squares summed over the count of
+    /// all emitter-free pixels, so that `clean_edge^2 / clean^2` is the share of the
+    /// emitter-free error that lies at edges, and `clean^2 - clean_edge^2` the rest's part
+    /// (after the roots of [`StreamMetrics`]: squares of these).
+    pub clean_edge: f64,
 }
 
 impl Split {
@@ -33,6 +38,7 @@ impl Split {
             smooth: f(self.smooth),
             edge: f(self.edge),
             clean: f(self.clean),
+            clean_edge: f(self.clean_edge),
         }
     }
     /// `f` applied to each pixel set of `self` and `o`.
@@ -42,6 +48,7 @@ impl Split {
             smooth: f(self.smooth, o.smooth),
             edge: f(self.edge, o.edge),
             clean: f(self.clean, o.clean),
+            clean_edge: f(self.clean_edge, o.clean_edge),
         }
     }
 }
@@ -50,6 +57,7 @@ impl Split {
 /// light has no emitter-free pixel).
 fn mean_squares(img: &Gray, masks: &Masks) -> Split {
     let (mut s, mut n) = ([0.0f64; 4], [0usize; 4]);
+    let mut clean_edge = 0.0f64;
     for ((v, &e), &c) in img.data.iter().zip(&masks.edge).zip(&masks.clean) {
         let v2 = (*v as f64) * (*v as f64);
         for (k, on) in [true, !e, e, c].into_iter().enumerate() {
@@ -58,6 +66,9 @@ fn mean_squares(img: &Gray, masks: &Masks) -> Split {
                 n[k] += 1;
             }
         }
+        if c && e {
+            clean_edge += v2;
+        }
     }
     let m = |k: usize| if n[k] == 0 { 0.0 } else { s[k] / n[k] as f64 };
     Split {
@@ -65,6 +76,11 @@ fn mean_squares(img: &Gray, masks: &Masks) -> Split {
         smooth: m(1),
         edge: m(2),
         clean: m(3),
+        clean_edge: if n[3] == 0 {
+            0.0
+        } else {
+            clean_edge / n[3] as f64
+        },
     }
 }
 
@@ -355,5 +371,33 @@ mod tests {
         }
         // The error is there for the other pixel sets.
         assert!(m.raw.p1.all > 10.0 && m.ema.p1.all > 10.0, "{:?}", m.raw.p1);
+    }
+
+    #[test]
+    fn edge_part_is_the_edge_pixels_share_of_the_emitter_free_error() {
+        // Error 1 on edge pixels, 2 on smooth ones, 50 off the emitter-free set: the edge part
+        // is the edge pixels' squares over the emitter-free count, whatever the emitters hold.
+        let (w, h) = (16usize, 8usize);
+        let edge: Vec<bool> = (0..w * h).map(|i| i % w < 4).collect();
+        let clean: Vec<bool> = (0..w * h).map(|i| i / w < 6).collect();
+        let masks = Masks {
+            edge: edge.clone(),
+            clean: clean.clone(),
+            far: [(); 2].map(|_| clean.clone()),
+        };
+        let e = Gray::from_fn(w, h, |x, y| match (clean[y * w + x], edge[y * w + x]) {
+            (false, _) => 50.0,
+            (true, true) => 1.0,
+            (true, false) => 2.0,
+        });
+        let sq = mean_squares(&e, &masks);
+        let (n_edge, n_clean) = (4.0 * 6.0, 16.0 * 6.0);
+        let want_edge = n_edge / n_clean;
+        let want_clean = (n_edge + 4.0 * (n_clean - n_edge)) / n_clean;
+        assert!((sq.clean_edge - want_edge).abs() < 1e-12, "{sq:?}");
+        assert!((sq.clean - want_clean).abs() < 1e-12, "{sq:?}");
+        // The smooth part is what is left.
+        let smooth = (sq.clean - sq.clean_edge) * n_clean / (n_clean - n_edge);
+        assert!((smooth - 4.0).abs() < 1e-12, "{smooth}");
     }
 }

@@ -50,6 +50,11 @@ pub fn ratios(
 #[derive(Debug, Clone, Copy, serde::Serialize)]
 pub struct TaaRatios {
     pub taa_p1_clean: f64,
+    /// TAA P1 on the emitter-free pixels off / at reference edges ([`Split::clean_edge`]).
+    pub taa_p1_smooth: f64,
+    pub taa_p1_edge: f64,
+    /// The edge pixels' share of the method's own emitter-free TAA P1 error (squared).
+    pub taa_edge_share: f64,
     pub p4: f64,
     pub p8: f64,
     pub taa_p4: f64,
@@ -57,8 +62,17 @@ pub struct TaaRatios {
 }
 
 pub fn taa_ratios(m: &RunMetrics, w: &RunMetrics) -> TaaRatios {
+    // Squared parts of the emitter-free TAA P1: (smooth, edge).
+    let parts = |s: &Split| {
+        let edge = s.clean_edge * s.clean_edge;
+        ((s.clean * s.clean - edge).max(0.0), edge)
+    };
+    let ((ms, me), (ws, we)) = (parts(&m.taa.p1), parts(&w.taa.p1));
     TaaRatios {
         taa_p1_clean: ratio(m.taa.p1.clean, w.taa.p1.clean),
+        taa_p1_smooth: ratio(ms, ws).sqrt(),
+        taa_p1_edge: ratio(me, we).sqrt(),
+        taa_edge_share: ratio(me, ms + me),
         p4: ratio(m.raw.p4, w.raw.p4),
         p8: ratio(m.raw.p8, w.raw.p8),
         taa_p4: ratio(m.taa.p4, w.taa.p4),

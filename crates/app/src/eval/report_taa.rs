@@ -70,7 +70,9 @@ pub fn config_table(md: &mut String, runs: &[&Run], white: &Run) -> Result<()> {
          bilinear taps on another surface dropped, alpha 0.1; the EMA for a still camera): \
          motion {:.2} px/frame, history kept by {:.1}% of the pixels (mean over the window). \
          P{:.0} and P{:.0}: sigma {:.0} and {:.0} px, on pixels more than {:.0} sigma from an emitter. \
-         Emitter-free ratios to white, ± the standard error across sequences; TAA FLIP absolute.\n",
+         Emitter-free ratios to white, ± the standard error across sequences; TAA FLIP absolute. \
+         Smooth / edge: the emitter-free pixels off / at reference edges; at edges: their share \
+         of the method's own squared TAA P1 error.\n",
         white.metrics.motion_px,
         100.0 * white.metrics.history_share,
         WIDE_SIGMAS[0],
@@ -81,8 +83,8 @@ pub fn config_table(md: &mut String, runs: &[&Run], white: &Run) -> Result<()> {
     )?;
     writeln!(
         md,
-        "| method | P1 | EMA P1 | TAA P1 | TAA FLIP | P4 | P8 | TAA P4 | TAA P8 |\n\
-         |---|---|---|---|---|---|---|---|---|"
+        "| method | P1 | EMA P1 | TAA P1 | TAA P1 smooth | TAA P1 edge | TAA error at edges \
+         | TAA FLIP | P4 | P8 | TAA P4 | TAA P8 |\n|---|---|---|---|---|---|---|---|---|---|---|---|"
     )?;
     for r in runs {
         let (m, w) = (&r.metrics, &white.metrics);
@@ -96,7 +98,7 @@ pub fn config_table(md: &mut String, runs: &[&Run], white: &Run) -> Result<()> {
         };
         writeln!(
             md,
-            "| {} | {} | {} | {} | {:.4} | {:.3} | {:.3} | {:.3} | {:.3} |",
+            "| {} | {} | {} | {} | {:.3} | {:.3} | {:.1}% | {:.4} | {:.3} | {:.3} | {:.3} | {:.3} |",
             r.method.name(),
             with_se(
                 ratio(m.raw.p1.clean, w.raw.p1.clean),
@@ -107,6 +109,9 @@ pub fn config_table(md: &mut String, runs: &[&Run], white: &Run) -> Result<()> {
                 se(|r| &r.ema_p1_per_sequence)
             ),
             with_se(q.taa_p1_clean, se(|r| &r.taa_p1_per_sequence)),
+            q.taa_p1_smooth,
+            q.taa_p1_edge,
+            100.0 * q.taa_edge_share,
             r.taa_flip_clean,
             q.p4,
             q.p8,
