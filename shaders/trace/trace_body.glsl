@@ -180,10 +180,9 @@ void main() {
 #if TRACE_MASK
     uint flag_index = px.y * P.width + px.x;
     g_textured0 = false;
-    g_seed_jitter = (P.flags & TRACE_FLAG_SEED_JITTER_ON_TEXTURES) != 0u &&
-                    (primary_flags[flag_index] & PRIMARY_TEXTURED) != 0u;
-    g_sobol_jitter = (P.flags & TRACE_FLAG_SOBOL_JITTER) != 0u &&
-                     (primary_flags[flag_index] & PRIMARY_TEXTURED) == 0u;
+    bool was_textured = (primary_flags[flag_index] & PRIMARY_TEXTURED) != 0u;
+    g_seed_jitter = (P.flags & TRACE_FLAG_SEED_JITTER_ON_TEXTURES) != 0u && was_textured;
+    g_sobol_jitter = (P.flags & TRACE_FLAG_SOBOL_JITTER) != 0u && !was_textured;
 #endif
     uint s0 = P.sample_index, count = P.sample_count;
     vec3 l = trace_paths(px, seed, s0, count) / float(count);

@@ -94,26 +94,25 @@ fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
 
 /// The jitter a rotating mask gives pixel `px` after `step` frames (CPU twin of path.glsl's
 /// `sample_dim` for dimensions 0 and 1, one sample per pixel): the mask's value at the
-/// dimension's offset, turned by `step` R2 steps, or with `sobol_walk` shifted by Sobol point
-/// `step`. Fractions in f32 as the shader computes them.
+/// dimension's offset, turned by `step` R2 steps, or with `sobol` (its direction numbers)
+/// shifted by Sobol point `step`. Fractions in f32 as the shader computes them.
 fn mask_jitter(
     a: &MethodAssets,
     off: (u32, u32),
     px: (u32, u32),
     step: u32,
-    sobol_walk: bool,
+    sobol: Option<&[[u32; 32]; 4]>,
 ) -> [f32; 2] {
-    use blueshift_sampling::{r2, rng::to_unit, sobol};
+    use blueshift_sampling::{r2, rng::to_unit};
     let n = a.n;
-    let dirs = sobol::direction_numbers();
     [0u32, 1].map(|dim| {
         let q = ((px.0 + off.0 + dim * 37) % n, (px.1 + off.1 + dim * 71) % n);
         let rank = a.mask[(q.1 * n + q.0) as usize];
         let x = (rank as f32 + 0.5) / (n * n) as f32;
         let x = x - x.floor();
-        let turn = match sobol_walk {
-            true => sobol::sobol(step, dim, &dirs),
-            false => step.wrapping_mul(r2::ALPHA[dim as usize]),
+        let turn = match sobol {
+            Some(dirs) => blueshift_sampling::sobol::sobol(step, dim, dirs),
+            None => step.wrapping_mul(r2::ALPHA[dim as usize]),
         };
         let y = x + to_unit(turn);
         y - y.floor()
@@ -179,6 +178,7 @@ fn a_still_jitter_walks_its_sequence_per_pixel() {
         ..scene(square, vec![textured_black], Vec3::ONE, cam)
     };
     let a = assets();
+    let dirs = blueshift_sampling::sobol::direction_numbers();
     let (w, h) = (24u32, 24u32);
     let frames = CYCLE_FRAMES + 4;
     let cases = [
@@ -210,7 +210,7 @@ fn a_still_jitter_walks_its_sequence_per_pixel() {
                 // The R2 walk on a pixel whose previous primary hit was textured.
                 let sobol_here = sobol_walk && !(square_textured && prev_hit[i]);
                 r2_walks += usize::from(sobol_walk && !sobol_here);
-                let j = mask_jitter(&a, off, px, step, sobol_here);
+                let j = mask_jitter(&a, off, px, step, sobol_here.then_some(&dirs));
                 let ndc = Vec2::new(
                     (px.0 as f32 + tp.view_offset.x + j[0]) / tp.view_size.x * 2.0 - 1.0,
                     (px.1 as f32 + tp.view_offset.y + j[1]) / tp.view_size.y * 2.0 - 1.0,
