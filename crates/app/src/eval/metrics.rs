@@ -56,31 +56,31 @@ impl Split {
 /// Mean squares of `img` on each pixel set; 0 for an empty set (e.g. a frame filled by a
 /// light has no emitter-free pixel).
 fn mean_squares(img: &Gray, masks: &Masks) -> Split {
-    let (mut s, mut n) = ([0.0f64; 4], [0usize; 4]);
-    let mut clean_edge = 0.0f64;
+    // Sets: all, smooth, edge, emitter-free, emitter-free edge.
+    let (mut s, mut n) = ([0.0f64; 5], [0usize; 5]);
     for ((v, &e), &c) in img.data.iter().zip(&masks.edge).zip(&masks.clean) {
         let v2 = (*v as f64) * (*v as f64);
-        for (k, on) in [true, !e, e, c].into_iter().enumerate() {
+        for (k, on) in [true, !e, e, c, c && e].into_iter().enumerate() {
             if on {
                 s[k] += v2;
                 n[k] += 1;
             }
         }
-        if c && e {
-            clean_edge += v2;
-        }
     }
-    let m = |k: usize| if n[k] == 0 { 0.0 } else { s[k] / n[k] as f64 };
-    Split {
-        all: m(0),
-        smooth: m(1),
-        edge: m(2),
-        clean: m(3),
-        clean_edge: if n[3] == 0 {
+    // Mean of set k's squares over set `over`'s count.
+    let m = |k: usize, over: usize| {
+        if n[over] == 0 {
             0.0
         } else {
-            clean_edge / n[3] as f64
-        },
+            s[k] / n[over] as f64
+        }
+    };
+    Split {
+        all: m(0, 0),
+        smooth: m(1, 1),
+        edge: m(2, 2),
+        clean: m(3, 3),
+        clean_edge: m(4, 3),
     }
 }
 
