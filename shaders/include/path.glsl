@@ -30,6 +30,9 @@ bool g_textured0;
 // TRACE_FLAG_SOBOL_JITTER on a pixel whose previous primary hit was untextured (set by main):
 // the jitter walks Sobol's points instead of R2's.
 bool g_sobol_jitter;
+// TRACE_FLAG_SHADE_EDGES on a pixel the sorting pass marked PRIMARY_SHADE_EDGE (set by main):
+// the light sample (dimensions 2 and 3) comes from the mask.
+bool g_shade_edge;
 #endif
 
 // Sample dimension `dim` of sample `index` for this pixel: from the mask in the mask modes
@@ -40,7 +43,9 @@ float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
     float x = to_unit(TRACE_SAMPLE_BITS(seed, index, dim));
 #if TRACE_MASK
     uint dim_set = P.flags >> TRACE_FLAG_MASK_DIMS_SHIFT;
-    bool from_mask = dim < MASK_DIMS && (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u) &&
+    bool light = dim == 2u || dim == 3u;
+    bool from_mask = dim < MASK_DIMS &&
+                     (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u || (light && g_shade_edge)) &&
                      !(dim < 2u && g_seed_jitter);
     if (P.mask_mode != MASK_MODE_NONE && from_mask) {
         uint n = P.mask_size;

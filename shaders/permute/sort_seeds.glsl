@@ -107,6 +107,9 @@ layout(set = 0, binding = 5, scalar) buffer Stats { uint sort_stats[2]; };
 layout(set = 0, binding = 7, scalar) buffer CycleHistory { uvec2 cycle_history[]; };
 // The running mean of the earlier frames (accumulate), vec4 per visible pixel.
 layout(set = 0, binding = 8, scalar) readonly buffer Accum { vec4 accum[]; };
+// The trace's primary_flags, W*H: the pass sets or clears PRIMARY_SHADE_EDGE.
+layout(set = 0, binding = 9, scalar) buffer CycleFlags { uint cycle_flags[]; };
+#include "shade_edges.glsl"
 #endif
 
 // Orders like the float (CPU twin: sort_key): positives over 0x80000000, negatives inverted,
@@ -284,6 +287,7 @@ void main() {
         seed[s] = seeds[px.y * p.stride + px.x];
 #endif
 #if SORT_CYCLE
+    uint means[SORT_SLOTS];  // the running means in fixed point (shade_edge_fixed)
     uint pixels = p.width * p.height;
 #if SORT_SAMPLE_KEYS
     // The block net's point the seed takes at the next phase, in the first vertex's light
@@ -296,6 +300,7 @@ void main() {
 #define SAMPLE_KEY(s)
 #endif
 #define LOAD_CYCLE(s, at) { \
+        means[s] = shade_edge_fixed(accum[at].w); \
         float k = p.cycle_mean_count > 0u ? val[s] - accum[at].w : val[s]; \
         uvec2 rec = uvec2(seed[s], floatBitsToUint(k)); \
         if (valid[s]) cycle_history[p.cycle_phase * pixels + at] = rec; \
@@ -321,6 +326,21 @@ void main() {
 #define LOAD_HISTORY(s, at)
 #endif
     SORT_EACH(LOAD)
+#if SORT_CYCLE
+    // Shading edges rank in classes of their own: their seeds' keys are the mask's errors.
+    // (Under motion the sample-key variant only clears the marks.)
+    bool marked[SORT_SLOTS];
+#if SORT_SAMPLE_KEYS
+#define NO_MARK(s) marked[s] = false;
+    SORT_EACH(NO_MARK)
+#else
+    shade_edge_marks(valid, cls, means,
+                     p.cycle_shade_edges != 0u && p.cycle_mean_count >= SHADE_EDGE_MIN_FRAMES,
+                     marked);
+#define SPLIT(s) cls[s] += marked[s] ? SHADE_EDGE_CLASS : 0u;
+    SORT_EACH(SPLIT)
+#endif
+#endif
 
     float key[SORT_SLOTS];
 #if SORT_HISTORY || SORT_SKEW
@@ -409,4 +429,12 @@ void main() {
     }
 #endif
     SORT_EACH(STORE)
+#if SORT_CYCLE
+#define MARK_OUT(s) if (valid[s]) { \
+        uint at = uint(origin.y + SY(s)) * p.width + uint(origin.x + SX(s)); \
+        cycle_flags[at] = (cycle_flags[at] & ~PRIMARY_SHADE_EDGE) | \
+                          (marked[s] ? PRIMARY_SHADE_EDGE : 0u); \
+    }
+    SORT_EACH(MARK_OUT)
+#endif
 }

@@ -180,7 +180,9 @@ void main() {
 #if TRACE_MASK
     uint flag_index = px.y * P.width + px.x;
     g_textured0 = false;
-    bool was_textured = (primary_flags[flag_index] & PRIMARY_TEXTURED) != 0u;
+    uint primary = primary_flags[flag_index];
+    bool was_textured = (primary & PRIMARY_TEXTURED) != 0u;
+    g_shade_edge = (P.flags & TRACE_FLAG_SHADE_EDGES) != 0u && (primary & PRIMARY_SHADE_EDGE) != 0u;
     g_seed_jitter = (P.flags & TRACE_FLAG_SEED_JITTER_ON_TEXTURES) != 0u && was_textured;
     g_sobol_jitter = (P.flags & TRACE_FLAG_SOBOL_JITTER) != 0u && !was_textured;
 #endif

@@ -51,6 +51,8 @@ mod rng;
 #[cfg(test)]
 mod sampling;
 #[cfg(test)]
+mod shade;
+#[cfg(test)]
 mod taa;
 #[cfg(test)]
 mod trace;

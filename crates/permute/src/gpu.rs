@@ -38,6 +38,9 @@ pub struct CycleInput<'a> {
     pub history: &'a Buffer,
     /// vec4 per visible pixel: the running mean of the earlier frames.
     pub accum: &'a Buffer,
+    /// The trace's `primary_flags` (u32 per visible pixel): the pass sets or clears
+    /// `PRIMARY_SHADE_EDGE` in them (`shade_edges_cpu`).
+    pub flags: &'a Buffer,
 }
 
 impl<'a> SortInput<'a> {
@@ -55,7 +58,7 @@ impl<'a> SortInput<'a> {
     }
 
     /// The optional buffers in `SORT_OPTIONAL`'s order.
-    fn optional(&self) -> [Option<&'a Buffer>; 6] {
+    fn optional(&self) -> [Option<&'a Buffer>; 7] {
         [
             self.classes,
             self.history,
@@ -63,6 +66,7 @@ impl<'a> SortInput<'a> {
             self.retarget,
             self.cycle.map(|c| c.history),
             self.cycle.map(|c| c.accum),
+            self.cycle.map(|c| c.flags),
         ]
     }
 
@@ -92,8 +96,10 @@ impl<'a> SortInput<'a> {
 }
 
 /// Whether `v` binds each of `SORT_OPTIONAL`.
-fn optional_flags(v: SortVariant) -> [bool; 6] {
-    [v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle]
+fn optional_flags(v: SortVariant) -> [bool; 7] {
+    [
+        v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle, v.cycle,
+    ]
 }
 
 /// Bindings of every sorting variant.
@@ -103,14 +109,15 @@ const SORT_BINDINGS: [Binding; 3] = [
     Binding::storage(2, "seeds"),
 ];
 /// Bindings of the extensions, in the order of `SortInput`'s classes, history, stats,
-/// retarget and cycle (two buffers).
-const SORT_OPTIONAL: [Binding; 6] = [
+/// retarget and cycle (three buffers).
+const SORT_OPTIONAL: [Binding; 7] = [
     Binding::storage(3, "classes"),
     Binding::storage(4, "hist_mean"),
     Binding::storage(5, "sort_stats"),
     Binding::storage(6, "seeds_out"),
     Binding::storage(7, "cycle_history"),
     Binding::storage(8, "accum"),
+    Binding::storage(9, "cycle_flags"),
 ];
 
 /// Pipelines of the permutation passes.

@@ -17,6 +17,7 @@ mod gpu;
 mod history;
 mod reproject;
 mod reproject_gpu;
+mod shade;
 mod similar;
 mod skew;
 
@@ -37,6 +38,7 @@ pub use reproject::{
     Reprojected, mean_motion, project_previous, reproject_motion_cpu, reproject_seeds_cpu,
 };
 pub use reproject_gpu::Reprojection;
+pub use shade::{shade_edge_fixed, shade_edge_marks_cpu, shade_edges_cpu};
 pub use similar::similar;
 
 /// Errors of the permutation passes.
@@ -124,6 +126,7 @@ impl Screen {
             cycle_next_valid: 0,
             cycle_mean_count: 0,
             cycle_sample_keys: 0,
+            cycle_shade_edges: 0,
         })
     }
 }

@@ -125,6 +125,7 @@ impl Renderer {
                 };
                 let sp = SortParams {
                     mask_size: n,
+                    cycle_shade_edges: u32::from(!moving && self.cfg.method.shade_edges()),
                     ..self.screen.sort_params(s.block, offset)?
                 };
                 blueshift_permute::with_cycle(sp, &cp)
@@ -150,6 +151,7 @@ impl Renderer {
             (true, Some(c)) => Some(CycleInput {
                 history: &c.history,
                 accum: &self.accum,
+                flags: &self.primary_flags,
             }),
             (true, None) => return Err(missing("a cycle history")),
         };
