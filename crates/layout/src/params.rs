@@ -227,7 +227,7 @@ pub const TRACE_FLAG_SHADE_EDGES: u32 = 256;
 /// the sorting block, differs from a same-class 4-neighbour's by more than this fraction
 /// (per mille) of the larger of the two, floored at half the block's mean; then dilated by
 /// one pixel within the class.
-pub const SHADE_EDGE_PER_MILLE: u32 = 200;
+pub const SHADE_EDGE_PER_MILLE: u32 = 300;
 /// Frames the running mean must hold before shading edges are marked (a noisier mean marks
 /// noise).
 pub const SHADE_EDGE_MIN_FRAMES: u32 = 16;
