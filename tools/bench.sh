@@ -63,7 +63,7 @@ for ((r = 0; r < ROUNDS; r++)); do
     outs[r * ${#CONFIGS[@]} + i]="$out"
     echo "== round $((r + 1))/$ROUNDS: bench --method $method --camera-path $camera ${size} --bounces $bounces" >&2
     "$bin" bench --method "$method" --camera-path "$camera" --width "${size%x*}" \
-      --height "${size#*x}" --bounces "$bounces" --spp 1 --frames 8 > "$out"
+      --height "${size#*x}" --bounces "$bounces" --spp 1 --warmup 17 --frames 8 > "$out"
     cat "$out" >&2
   done
 done
@@ -96,7 +96,7 @@ done
 cpu="$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)"
 {
   echo
-  echo "Shares are of the trace pass of the same run; medians of 8 timed frames, the run with the median share of $ROUNDS interleaved rounds; $(nproc) cores ($cpu), load average $(cut -d' ' -f1-3 /proc/loadavg) at the end. Regenerate: \`bash tools/bench.sh\`."
+  echo "Shares are of the trace pass of the same run; medians of 8 timed frames after 17 untimed ones (the steady state of a still view), the run with the median share of $ROUNDS interleaved rounds; $(nproc) cores ($cpu), load average $(cut -d' ' -f1-3 /proc/loadavg) at the end. Regenerate: \`bash tools/bench.sh\`."
   echo
 } >> "$table"
 

@@ -13,9 +13,15 @@ use blueshift_render::{
 pub struct BenchArgs {
     #[command(flatten)]
     pub method: MethodArgs,
-    /// Timed frames (after one warm-up frame).
+    /// Timed frames (after the warm-up frames).
     #[arg(long, default_value_t = 3)]
     pub frames: u32,
+    /// Untimed frames first, along the same camera path. The default reaches every method's
+    /// steady state: lavapipe compiles pipelines on first use, and a still `sort-cycle` view
+    /// starts marking shading edges (extra work in its sort) once 16 frames are in the
+    /// running mean.
+    #[arg(long, default_value_t = DEFAULT_WARMUP)]
+    pub warmup: u32,
     /// Camera motion over the timed frames, as for `render` (static, pan:PX, orbit:DEG,
     /// swing:DEG or a keyframe file). A still view lets methods that group by surface reuse
     /// the G-buffer and classes, so their pass costs differ under motion.
@@ -28,13 +34,20 @@ pub struct BenchArgs {
     pub loop_stats: bool,
 }
 
+/// One frame more than the running mean needs before the still sort marks shading edges,
+/// so the first timed frame also traces with the marks.
+const DEFAULT_WARMUP: u32 = blueshift_layout::params::SHADE_EDGE_MIN_FRAMES + 1;
+
 pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     if !(1..=1000).contains(&a.frames) {
         bail!("--frames {} is outside 1..=1000", a.frames);
     }
+    if !(1..=1000).contains(&a.warmup) {
+        bail!("--warmup {} is outside 1..=1000", a.warmup);
+    }
     let mut cfg = a.method.config();
     let path = &a.camera_path;
-    let (view, base_offset) = path.view_window(a.frames + 1, cfg.width, cfg.height);
+    let (view, base_offset) = path.view_window(a.warmup + a.frames, cfg.width, cfg.height);
     cfg.view_size = Some(view);
     let scene = a.method.scene.load_scene()?;
     let assets = a.method.scene.load_assets()?;
@@ -47,13 +60,15 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
         let o = path.view_offset(f);
         r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
     };
-    move_to(&mut r, 0);
-    r.render_frame()?; // warm-up: lavapipe compiles the pipeline lazily
+    for f in 0..a.warmup {
+        move_to(&mut r, f);
+        r.render_frame()?;
+    }
     let mut ms: Vec<f64> = Vec::new();
     let mut loop_iterations = 0;
     let mut per_pass = std::collections::BTreeMap::<String, Vec<f64>>::new();
     let cpu0 = process_cpu_seconds();
-    for f in 1..=a.frames {
+    for f in a.warmup..a.warmup + a.frames {
         move_to(&mut r, f);
         let s = r.render_frame()?;
         ms.push(s.ms("trace"));
@@ -141,7 +156,9 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
             ..cfg
         };
         let mut r = Renderer::new(&dev, &scene, &assets, cfg)?;
-        r.render_frame()?; // the warm-up frame, as above
+        for _ in 0..a.warmup {
+            r.render_frame()?; // still frames: only the counts are kept
+        }
         let mut loops = LoopStats::default();
         for _ in 0..a.frames {
             if let Some(l) = r.render_frame()?.loops {

@@ -429,6 +429,13 @@ fn other_bad_arguments_are_errors_not_panics() {
         &o,
         &["--method must permute seeds", "sort-retarget", "not white"],
     );
+    for (flag, value) in [("--frames", "0"), ("--warmup", "0"), ("--warmup", "5000")] {
+        let o = c.run(
+            &["bench", flag, value, "--width", "8", "--height", "8"],
+            &[],
+        );
+        c.expect_error(&o, &[&format!("{flag} {value} is outside 1..=1000")]);
+    }
     let o = c.run(&["soak", "--camera-path", "/nonexistent/path.json"], &[]);
     c.expect_error(&o, &["/nonexistent/path.json", "orbit-view:DEG"]);
 }
