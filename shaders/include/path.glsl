@@ -49,7 +49,7 @@ float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
                      !(dim < 2u && g_seed_jitter);
     if (P.mask_mode != MASK_MODE_NONE && from_mask) {
         uint n = P.mask_size;
-        uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) + dim * uvec2(37u, 71u)) % n;
+        uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) + dim * uvec2(MASK_DIM_OFFSET_X, MASK_DIM_OFFSET_Y)) % n;
         uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.mask_step : 0u;
         uint rank = mask[(layer * n + q.y) * n + q.x];
         x = fract((float(rank) + 0.5) / float(n * n) + float(s) * GOLDEN);

@@ -5,8 +5,8 @@
 //! previous primary hit was untextured (`TRACE_FLAG_SOBOL_JITTER`), R2's elsewhere and for
 //! `mask-rot`.
 use crate::Gpu;
-use blueshift_layout::params::PRIMARY_TEXTURED;
-use blueshift_render::{MethodAssets, RenderConfig, Renderer, default_assets_dir};
+use blueshift_layout::params::{MASK_DIM_OFFSET_X, MASK_DIM_OFFSET_Y, PRIMARY_TEXTURED};
+use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
 use blueshift_scene::{Scene, SceneGpu};
 
 fn textured_scene() -> Scene {
@@ -58,29 +58,8 @@ fn primary_flags_mark_textured_primary_hits() {
 fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
     let gpu = Gpu::new();
     let s = textured_scene();
-    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
-    let (w, h) = (24, 16);
     let frame = |marks: u32, moving: bool| {
-        let cfg = RenderConfig {
-            bounces: 1,
-            method: blueshift_render::Method::SORT_CYCLE,
-            ..RenderConfig::new(w, h)
-        };
-        let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
-        r.render_frame().unwrap();
-        if moving {
-            let mut cam = r.camera();
-            cam.position.x += 0.01;
-            r.set_camera(cam);
-        }
-        r.write_primary_flags(&vec![marks; (w * h) as usize])
-            .unwrap();
-        r.render_frame().unwrap();
-        let e = r.read_estimate().unwrap();
-        e.iter()
-            .flatten()
-            .map(|v| v.to_bits())
-            .collect::<Vec<u32>>()
+        second_frame_with_flags(&gpu, &s, Method::SORT_CYCLE, &[marks; 24 * 16], moving)
     };
     assert!(
         frame(PRIMARY_TEXTURED, false) != frame(0, false),
@@ -90,6 +69,35 @@ fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
         frame(PRIMARY_TEXTURED, true) != frame(0, true),
         "a moving view's marked pixels kept the mask's jitter"
     );
+}
+
+/// The estimate (bits, rgba per pixel) of the second frame of `method` at 24x16 in direct
+/// light, after writing `flags` into the trace's `primary_flags` (one per pixel); `moving`:
+/// the camera moved before it.
+pub(crate) fn second_frame_with_flags(
+    gpu: &Gpu,
+    scene: &Scene,
+    method: Method,
+    flags: &[u32],
+    moving: bool,
+) -> Vec<u32> {
+    let assets = MethodAssets::load(&default_assets_dir()).unwrap();
+    let cfg = RenderConfig {
+        bounces: 1,
+        method,
+        ..RenderConfig::new(24, 16)
+    };
+    let mut r = Renderer::new(gpu.dev(), scene, &assets, cfg).unwrap();
+    r.render_frame().unwrap();
+    if moving {
+        let mut cam = r.camera();
+        cam.position.x += 0.01;
+        r.set_camera(cam);
+    }
+    r.write_primary_flags(flags).unwrap();
+    r.render_frame().unwrap();
+    let e = r.read_estimate().unwrap();
+    e.iter().flatten().map(|v| v.to_bits()).collect()
 }
 
 /// The jitter a rotating mask gives pixel `px` after `step` frames (CPU twin of path.glsl's
@@ -106,7 +114,10 @@ fn mask_jitter(
     use blueshift_sampling::{r2, rng::to_unit};
     let n = a.n;
     [0u32, 1].map(|dim| {
-        let q = ((px.0 + off.0 + dim * 37) % n, (px.1 + off.1 + dim * 71) % n);
+        let q = (
+            (px.0 + off.0 + dim * MASK_DIM_OFFSET_X) % n,
+            (px.1 + off.1 + dim * MASK_DIM_OFFSET_Y) % n,
+        );
         let rank = a.mask[(q.1 * n + q.0) as usize];
         let x = (rank as f32 + 0.5) / (n * n) as f32;
         let x = x - x.floor();

@@ -2,36 +2,24 @@
 //! `primary_flags` (its twin is checked in `permute::every_sort_variant_matches_cpu`), and
 //! the next still frame takes exactly the marked pixels' light sample from the mask.
 use crate::Gpu;
+use crate::jitter::second_frame_with_flags;
 use blueshift_layout::params::PRIMARY_SHADE_EDGE;
-use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
+use blueshift_render::{Method, default_assets_dir};
 use blueshift_scene::Scene;
 
-/// The estimate (bits) of frame 2 of `method` on the Cornell box in direct light after
+/// The estimate (bits, one [rgba] per pixel) of frame 2 of `method` on the Cornell box after
 /// writing `marks` (`PRIMARY_SHADE_EDGE` on every other pixel, or none) into the flags;
 /// `moving`: the camera moved before it.
 fn frame_with_marks(gpu: &Gpu, method: Method, marks: bool, moving: bool) -> Vec<[u32; 4]> {
     let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
-    let assets = MethodAssets::load(&default_assets_dir()).unwrap();
-    let (w, h) = (24u32, 16u32);
-    let cfg = RenderConfig {
-        bounces: 1,
-        method,
-        ..RenderConfig::new(w, h)
-    };
-    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
-    r.render_frame().unwrap();
-    if moving {
-        let mut cam = r.camera();
-        cam.position.x += 0.01;
-        r.set_camera(cam);
-    }
-    let flags: Vec<u32> = (0..w * h)
+    let w = 24;
+    let flags: Vec<u32> = (0..w * 16)
         .map(|i| u32::from(marks && (i % w + i / w) % 2 == 0) * PRIMARY_SHADE_EDGE)
         .collect();
-    r.write_primary_flags(&flags).unwrap();
-    r.render_frame().unwrap();
-    let e = r.read_estimate().unwrap();
-    e.iter().map(|v| v.map(f32::to_bits)).collect()
+    let bits = second_frame_with_flags(gpu, &s, method, &flags, moving);
+    bits.chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect()
 }
 
 /// With a still view, marked pixels (a checkerboard) change their estimate (another light

@@ -213,6 +213,10 @@ pub const TRACE_FLAG_SEED_JITTER_ON_TEXTURES: u32 = 64;
 /// better than R2's (R2's x step is close to 3/4, so its x values cluster in fours). Textured
 /// pixels keep R2. Only the jitter: every pair of dimensions would walk the same two.
 pub const TRACE_FLAG_SOBOL_JITTER: u32 = 128;
+/// Mask dimension `dim` reads the mask at the pixel moved by `dim` times this offset, so
+/// the dimensions a mask drives see different, uncorrelated parts of one mask.
+pub const MASK_DIM_OFFSET_X: u32 = 37;
+pub const MASK_DIM_OFFSET_Y: u32 = 71;
 /// `primary_flags` bit: the primary hit's material has a texture.
 pub const PRIMARY_TEXTURED: u32 = 1;
 /// `primary_flags` bit, set by sort-cycle's sorting pass in a still view: the pixel is a

@@ -209,16 +209,10 @@ pub fn sequence_mask_shift(sequence: u32) -> (u32, u32) {
     if sequence == 0 {
         return (0, 0);
     }
-    // Two rounds of a 32-bit integer hash (lowbias32), one per axis.
-    let hash = |mut x: u32| {
-        x ^= x >> 16;
-        x = x.wrapping_mul(0x7feb_352d);
-        x ^= x >> 15;
-        x = x.wrapping_mul(0x846c_a68b);
-        x ^ (x >> 16)
-    };
-    let h = hash(sequence);
-    (h, hash(h ^ 0x9e37_79b9))
+    // One hash per axis, the second chained on the first.
+    use blueshift_sampling::rng::lowbias32;
+    let h = lowbias32(sequence);
+    (h, lowbias32(h ^ 0x9e37_79b9))
 }
 
 /// `offset` moved by `shift` on a mask of side `n`.

@@ -10,6 +10,17 @@ pub fn pcg_hash(v: u32) -> u32 {
     (word >> 22) ^ word
 }
 
+/// Chris Wellons' "lowbias32" (xorshift-multiply, two rounds): a cheap bijection on u32 for
+/// hashing small indices where PCG's LCG step is not wanted.
+#[inline]
+pub fn lowbias32(mut x: u32) -> u32 {
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x7feb_352d);
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x846c_a68b);
+    x ^ (x >> 16)
+}
+
 /// Hash of three words, each folded in with a full `pcg_hash` round.
 #[inline]
 pub fn hash3(a: u32, b: u32, c: u32) -> u32 {
@@ -42,6 +53,14 @@ mod tests {
     fn pcg_hash_is_a_bijection_on_a_window() {
         // A bijection on u32 maps 2^20 distinct inputs to 2^20 distinct outputs.
         let mut v: Vec<u32> = (0..1u32 << 20).map(pcg_hash).collect();
+        v.sort_unstable();
+        v.dedup();
+        assert_eq!(v.len(), 1 << 20);
+    }
+
+    #[test]
+    fn lowbias32_is_a_bijection_on_a_window() {
+        let mut v: Vec<u32> = (0..1u32 << 20).map(|i| lowbias32(i << 12)).collect();
         v.sort_unstable();
         v.dedup();
         assert_eq!(v.len(), 1 << 20);
