@@ -19,7 +19,8 @@ uint shade_edge_fixed(float m) {
      SY(s) + (dy) < SORT_SLOTS / SORT_ROW && valid[SE_Q(s, dx, dy)] && \
      cls[SE_Q(s, dx, dy)] == cls[s])
 
-// Marks of the block's slots: `means` the fixed-point running means, `on` false clears all.
+// Marks of the block's slots: `means` the fixed-point running means, `on` false clears all
+// (llvmpipe runs both sides of a uniform branch, so the test runs either way).
 // The mean blurred 3x3 (weights 1-2-1 per axis) over the slot's class, against each
 // same-class 4-neighbour's: a jump above SHADE_EDGE_PER_MILLE of the larger, floored at half
 // the block's mean, marks the slot; then the marks grow by one pixel within the class.
@@ -46,25 +47,28 @@ void shade_edge_marks(bool valid[SORT_SLOTS], uint cls[SORT_SLOTS], uint means[S
     // |bsum_s / bw_s - bsum_q / bw_q| > t max(bsum_s / bw_s, bsum_q / bw_q, total / (2 count)),
     // times 1000 bw_s bw_q 2 count (below 2^50).
     uint64_t scale = 2ul * uint64_t(count);
+    // The test is symmetric in s and q, so each pair is tested once (to the right and down)
+    // and marks both pixels.
     bool raw[SORT_SLOTS];
-#define SE_JUMP(s, dx, dy) if (SE_SAME(s, dx, dy)) { \
+#define SE_CLEAR(s) raw[s] = false;
+    SORT_EACH(SE_CLEAR)
+#define SE_JUMP(s, dx, dy) if (valid[s] && SE_SAME(s, dx, dy)) { \
         const int q = SE_Q(s, dx, dy); \
         uint64_t a = uint64_t(bsum[s]) * uint64_t(bw[q]), b = uint64_t(bsum[q]) * uint64_t(bw[s]); \
         uint64_t d = a > b ? a - b : b - a; \
         uint64_t limit = max(max(a, b) * scale, uint64_t(total) * uint64_t(bw[s] * bw[q])); \
-        jump = jump || d * scale * 1000ul > limit * uint64_t(SHADE_EDGE_PER_MILLE); \
+        if (d * scale * 1000ul > limit * uint64_t(SHADE_EDGE_PER_MILLE)) { \
+            raw[s] = true; \
+            raw[q] = true; \
+        } \
     }
-#define SE_MARK(s) { \
-        bool jump = false; \
-        SE_JUMP(s, 1, 0) SE_JUMP(s, -1, 0) SE_JUMP(s, 0, 1) SE_JUMP(s, 0, -1) \
-        raw[s] = on && valid[s] && jump; \
-    }
+#define SE_MARK(s) SE_JUMP(s, 1, 0) SE_JUMP(s, 0, 1)
     SORT_EACH(SE_MARK)
 #define SE_NEAR(s, dx, dy) if (SE_SAME(s, dx, dy)) near = near || raw[SE_Q(s, dx, dy)];
 #define SE_GROW(s) { \
         bool near = raw[s]; \
         SE_NEAR(s, 1, 0) SE_NEAR(s, -1, 0) SE_NEAR(s, 0, 1) SE_NEAR(s, 0, -1) \
-        marked[s] = valid[s] && near; \
+        marked[s] = on && valid[s] && near; \
     }
     SORT_EACH(SE_GROW)
 }

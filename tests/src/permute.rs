@@ -2,7 +2,7 @@
 //! permutation of the initial seeds after every pass.
 use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
-use blueshift_layout::params::{PRIMARY_SHADE_EDGE, SHADE_EDGE_MIN_FRAMES};
+use blueshift_layout::params::{PRIMARY_SHADE_EDGE, PRIMARY_TEXTURED, SHADE_EDGE_MIN_FRAMES};
 use blueshift_permute::{
     CYCLE_FRAMES, CycleInput, CycleParams, PermutePasses, Screen, SortInput, SortParams,
     SortVariant, cycle_keys_cpu, is_permutation_of, mask_offset, pack_mask_moves,
@@ -372,8 +372,11 @@ fn every_sort_variant_matches_cpu() {
         mean_count: SHADE_EDGE_MIN_FRAMES,
         sample_keys: 0,
     };
-    // The trace's flags, both bits at random: the pass sets or clears the mark only.
-    let flags: Vec<u32> = (0..px).map(|_| rng.next_u32() % 4).collect();
+    // The trace's flags as it leaves them (the textured bit at random, no marks): the pass
+    // adds marks and keeps the other bits.
+    let flags: Vec<u32> = (0..px)
+        .map(|_| rng.next_u32() % 2 * PRIMARY_TEXTURED)
+        .collect();
     let mut cycle_history = vec![[0u32; 2]; CYCLE_FRAMES as usize * px];
     for (i, slot) in cycle_history[4 * px..5 * px].iter_mut().enumerate() {
         let at = (i as u32 / w) * sc.stride() + i as u32 % w;

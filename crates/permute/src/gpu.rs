@@ -38,8 +38,9 @@ pub struct CycleInput<'a> {
     pub history: &'a Buffer,
     /// vec4 per visible pixel: the running mean of the earlier frames.
     pub accum: &'a Buffer,
-    /// The trace's `primary_flags` (u32 per visible pixel): the pass sets or clears
-    /// `PRIMARY_SHADE_EDGE` in them (`shade_edges_cpu`).
+    /// The trace's `primary_flags` (u32 per visible pixel): a still frame's pass sets
+    /// `PRIMARY_SHADE_EDGE` on the marked pixels (`shade_edges_cpu`); the trace clears it
+    /// when it records the next primary hits (`TRACE_FLAG_RECORD_PRIMARY`).
     pub flags: &'a Buffer,
 }
 
@@ -82,7 +83,7 @@ impl<'a> SortInput<'a> {
         }
         for ((b, on), given) in SORT_OPTIONAL
             .iter()
-            .zip(optional_flags(v))
+            .zip(optional_flags(v, false))
             .zip(self.optional())
         {
             match (on, given.is_some()) {
@@ -95,10 +96,12 @@ impl<'a> SortInput<'a> {
     }
 }
 
-/// Whether `v` binds each of `SORT_OPTIONAL`.
-fn optional_flags(v: SortVariant) -> [bool; 7] {
+/// Whether `v` binds each of `SORT_OPTIONAL`; with `sample_keys` (a moving view, which marks
+/// no shading edges) the cycle's shader binds no flags.
+fn optional_flags(v: SortVariant, sample_keys: bool) -> [bool; 7] {
+    let flags = v.cycle && !sample_keys;
     [
-        v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle, v.cycle,
+        v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle, flags,
     ]
 }
 
@@ -172,13 +175,18 @@ impl PermutePasses {
         seeds: &Buffer,
     ) -> Result<()> {
         input.check(v, p.block)?;
+        let sample_keys = v.cycle && p.cycle_sample_keys != 0;
         let mut resources: Vec<(&str, Res)> = vec![
             ("estimate", input.estimate.into()),
             ("mask", input.mask.into()),
             ("seeds", seeds.into()),
         ];
-        for (b, buffer) in SORT_OPTIONAL.iter().zip(input.optional()) {
-            resources.extend(buffer.map(|buf| (b.name, buf.into())));
+        for ((b, buffer), on) in SORT_OPTIONAL
+            .iter()
+            .zip(input.optional())
+            .zip(optional_flags(v, sample_keys))
+        {
+            resources.extend(buffer.filter(|_| on).map(|buf| (b.name, buf.into())));
         }
         let area = match v.retarget {
             true => (p.stride, p.padded_height),
@@ -186,13 +194,12 @@ impl PermutePasses {
         };
         let groups = block_groups(p, area)?;
         let dev = &self.dev;
-        let sample_keys = v.cycle && p.cycle_sample_keys != 0;
         let pipeline = self
             .sort
             .get_or_create((v, sample_keys), |(v, sample_keys)| {
                 let optional = SORT_OPTIONAL
                     .iter()
-                    .zip(optional_flags(v))
+                    .zip(optional_flags(v, sample_keys))
                     .filter(|(_, on)| *on);
                 let bindings: Vec<Binding> = SORT_BINDINGS
                     .into_iter()

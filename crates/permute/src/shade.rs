@@ -94,12 +94,13 @@ pub fn shade_edge_marks_cpu(p: &SortParams, means: &[f32], classes: &[u32]) -> V
 }
 
 /// What the sorting pass does with the marks (`shade_edge_marks_cpu`): marked pixels rank in
-/// classes of their own (`classes` updated in place) and carry `PRIMARY_SHADE_EDGE` in
-/// `flags` (set or cleared on every visible pixel).
+/// classes of their own (`classes` updated in place) and get `PRIMARY_SHADE_EDGE` in `flags`.
+/// The pass never clears it: the trace rewrites every visible pixel's flags when it records
+/// the primary hits (`TRACE_FLAG_RECORD_PRIMARY`, set for every method with the marks).
 pub fn shade_edges_cpu(p: &SortParams, means: &[f32], classes: &mut [u32], flags: &mut [u32]) {
     let marks = shade_edge_marks_cpu(p, means, classes);
     for ((c, f), &m) in classes.iter_mut().zip(flags.iter_mut()).zip(&marks) {
         *c += if m { SHADE_EDGE_CLASS } else { 0 };
-        *f = (*f & !PRIMARY_SHADE_EDGE) | if m { PRIMARY_SHADE_EDGE } else { 0 };
+        *f |= if m { PRIMARY_SHADE_EDGE } else { 0 };
     }
 }

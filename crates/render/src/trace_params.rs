@@ -205,6 +205,15 @@ mod tests {
                 }
                 // Textured pixels' jitter is chosen only where the mask drives the jitter.
                 assert_eq!(m.jitter_flags(moving) != 0, dims & 3 != 0, "{name}");
+                // The sort only sets shading-edge marks; the trace's record clears them.
+                if m.shade_edges() {
+                    let record = blueshift_layout::params::TRACE_FLAG_RECORD_PRIMARY;
+                    assert_ne!(
+                        m.jitter_flags(moving) & record,
+                        0,
+                        "{name}: marks never cleared"
+                    );
+                }
             }
         }
         assert!(some > 0, "no preset leaves dimensions to the mask");
