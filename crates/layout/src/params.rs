@@ -46,7 +46,7 @@ gpu_struct! {
         pub cycle_sample_keys: u32,
         /// 1 (a still view, error keys): mark the block's shading edges in the trace's
         /// flags (`PRIMARY_SHADE_EDGE`) and rank their pixels in classes of their own
-        /// (`shade_edge_marks_cpu` is the rule); 0: clear the marks.
+        /// (`shade_edge_marks_cpu` is the rule); 0: mark none (the trace clears old marks).
         pub cycle_shade_edges: u32,
     }
 }

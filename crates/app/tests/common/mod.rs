@@ -1,5 +1,8 @@
-//! The harness of crates/app/tests/errors.rs: runs the binary in a temp dir with a clean
-//! environment and checks an error run (exit code 1, one `error:` line, no output file).
+//! The harness of crates/app/tests/errors.rs and flags.rs: runs the binary in a temp dir
+//! with a clean environment and checks an error run (exit code 1, one `error:` line, no
+//! output file).
+// Each test binary that includes it uses a part of it.
+#![allow(dead_code)]
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
