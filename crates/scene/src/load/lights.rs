@@ -45,15 +45,20 @@ fn convert(
     world: &Mat4,
     warnings: &mut Warnings,
 ) -> Option<PunctualLight> {
-    let skip = |why: String, warnings: &mut Warnings| {
-        warnings.warn(&format!("light-{index}"), || {
-            format!("KHR_lights_punctual light {index} {why}; the light is skipped")
-        });
+    // One line per kind of problem (`kind`), however many lights have it.
+    let skip = |kind: &str, why: String, warnings: &mut Warnings| {
+        warnings.warn_item(
+            kind,
+            "KHR_lights_punctual lights skipped",
+            || format!("light {index} {why}"),
+            |item| format!("KHR_lights_punctual {item}; the light is skipped"),
+        );
         None
     };
     let color = Vec3::from_array(light.color);
     if !(light.intensity.is_finite() && light.intensity >= 0.0) {
         return skip(
+            "light-intensity",
             format!(
                 "has intensity {}, which must be a finite number >= 0",
                 light.intensity
@@ -63,6 +68,7 @@ fn convert(
     }
     if !(color.is_finite() && color.min_element() >= 0.0) {
         return skip(
+            "light-color",
             format!("has color {:?}, which must be finite and >= 0", light.color),
             warnings,
         );
@@ -75,6 +81,7 @@ fn convert(
             let half_pi = std::f32::consts::FRAC_PI_2;
             if !(inner >= 0.0 && inner < outer && outer <= half_pi) {
                 return skip(
+                    "light-cone",
                     format!(
                         "has cone angles inner {inner}, outer {outer}; they must satisfy \
                      0 <= inner < outer <= pi/2"
@@ -85,9 +92,11 @@ fn convert(
             LightKind::Spot { inner, outer }
         }
         (Checked::Valid(Type::Spot), None) => {
-            return skip("is a spot without `spot`".into(), warnings);
+            return skip("light-spot", "is a spot without `spot`".into(), warnings);
         }
-        (Checked::Invalid, _) => return skip("has an unknown type".into(), warnings),
+        (Checked::Invalid, _) => {
+            return skip("light-type", "has an unknown type".into(), warnings);
+        }
     };
     if light.range.is_some() {
         warnings.warn("light-range", || {
@@ -100,6 +109,7 @@ fn convert(
     let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
     if !position.is_finite() || direction == Vec3::ZERO {
         return skip(
+            "light-transform",
             "sits on a node with a degenerate transform".into(),
             warnings,
         );

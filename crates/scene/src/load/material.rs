@@ -27,9 +27,16 @@ pub(super) fn load_images(
             }
             Err(problem) => {
                 let i = image.index();
-                ctx.warnings.warn(&format!("image:{i}"), || {
-                    format!("image {i} cannot be used ({problem}); textures using it are ignored")
-                });
+                ctx.warnings.warn_item(
+                    "image",
+                    "images cannot be used; textures using them are ignored",
+                    || format!("image {i}: {problem}"),
+                    |_| {
+                        format!(
+                            "image {i} cannot be used ({problem}); textures using it are ignored"
+                        )
+                    },
+                );
                 map.push(None);
             }
         }
@@ -162,9 +169,12 @@ pub(super) fn load_materials(
         let info = info?;
         if info.tex_coord() != 0 {
             let set = info.tex_coord();
-            ctx.warnings.warn(&format!("texcoord{set}"), || {
-                format!("{slot} textures using TEXCOORD_{set} ignored (only TEXCOORD_0)")
-            });
+            ctx.warnings.warn_item(
+                "texcoord",
+                "textures using a TEXCOORD other than TEXCOORD_0 ignored",
+                || format!("{slot} texture using TEXCOORD_{set}"),
+                |_| format!("{slot} textures using TEXCOORD_{set} ignored (only TEXCOORD_0)"),
+            );
             return None;
         }
         let i = info.texture().index();

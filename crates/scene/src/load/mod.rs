@@ -33,8 +33,10 @@ mod material;
 mod precheck;
 mod primitive;
 mod uri;
+mod warnings;
 
 pub use budget::LoadBudget;
+pub(crate) use warnings::Warnings;
 
 use crate::scene::{Image, Material, Scene, Texture};
 use crate::{Camera, Result, SceneError};
@@ -68,35 +70,6 @@ pub const ENVIRONMENT_EXTRAS_KEY: &str = "blueshift_environment";
 
 /// Deepest node hierarchy accepted.
 const MAX_NODE_DEPTH: usize = 256;
-
-/// Collects warnings, one line per kind, with a count of repeats.
-#[derive(Default)]
-pub(crate) struct Warnings {
-    entries: Vec<(String, String, usize)>,
-}
-
-impl Warnings {
-    /// Records a warning of kind `key`; only the first message of a kind is kept.
-    pub(crate) fn warn(&mut self, key: &str, message: impl FnOnce() -> String) {
-        match self.entries.iter_mut().find(|(k, _, _)| k == key) {
-            Some(entry) => entry.2 += 1,
-            None => self.entries.push((key.to_string(), message(), 1)),
-        }
-    }
-
-    fn finish(self) -> Vec<String> {
-        self.entries
-            .into_iter()
-            .map(|(_, msg, n)| {
-                if n > 1 {
-                    format!("{msg} ({n} occurrences)")
-                } else {
-                    msg
-                }
-            })
-            .collect()
-    }
-}
 
 /// Shared state while walking one document.
 pub(crate) struct Ctx<'a> {
@@ -267,8 +240,12 @@ fn load_inner(
 
     if ctx.zero_area > 0 {
         let n = ctx.zero_area;
-        ctx.warnings
-            .warn("zero-area", || format!("skipped {n} zero-area triangles"));
+        ctx.warnings.warn("zero-area", || {
+            format!(
+                "skipped {} zero-area triangles",
+                warnings::thousands(n as u64)
+            )
+        });
     }
     if triangles.is_empty() {
         return Err(SceneError::EmptyScene {
@@ -347,21 +324,30 @@ fn load_buffers(
     Ok(out)
 }
 
+/// One warning line per reason an extension is ignored (a file may list thousands).
 fn warn_extensions(document: &gltf::Document, warnings: &mut Warnings) {
     for ext in document.extensions_used() {
-        let reason = match ext {
+        let (kind, reason) = match ext {
             "KHR_materials_emissive_strength"
             | "KHR_materials_specular"
             | "KHR_lights_punctual" => {
                 continue;
             }
-            "KHR_texture_transform" => "ignored: textures are sampled without the transform",
-            e if e.starts_with("KHR_materials_") => "ignored: only metallic-roughness is used",
-            _ => "not supported, ignored",
+            "KHR_texture_transform" => (
+                "ext-transform",
+                "ignored: textures are sampled without the transform",
+            ),
+            e if e.starts_with("KHR_materials_") => {
+                ("ext-materials", "ignored: only metallic-roughness is used")
+            }
+            _ => ("ext-unsupported", "not supported, ignored"),
         };
-        warnings.warn(&format!("ext:{ext}"), || {
-            format!("extension {ext} {reason}")
-        });
+        warnings.warn_item(
+            kind,
+            &format!("extensions {reason}"),
+            || ext.to_string(),
+            |ext| format!("extension {ext} {reason}"),
+        );
     }
 }
 
