@@ -59,19 +59,25 @@ pub enum SceneError {
         vertex_count: usize,
     },
 
-    /// NaN or infinite vertex positions (in the file, or after the node transform) are an
-    /// error, not a silent skip: they mean the file is corrupt.
+    /// A vertex position that is NaN, infinite, or has a coordinate of magnitude
+    /// [`crate::MAX_COORDINATE`] or more, in the file or after the node transform (`world`).
+    /// An error, not a silent skip: non-finite positions mean a corrupt file, and huge ones
+    /// overflow the tracer's f32 arithmetic (extents, edges, ray offsets) or lose the scene to
+    /// rounding, rendering a wrong image.
     #[error(
-        "{}: mesh {mesh} primitive {primitive}: vertex {vertex} has a non-finite position \
-         {position:?}",
-        path.display()
+        "{}: mesh {mesh} primitive {primitive}: POSITION accessor {accessor}: vertex {vertex} {}",
+        path.display(),
+        position_problem(position, *world)
     )]
-    NonFinitePosition {
+    PositionOutOfRange {
         path: PathBuf,
         mesh: String,
         primitive: usize,
+        accessor: usize,
         vertex: usize,
         position: [f32; 3],
+        /// Whether the position is the world-space one (after the node transforms).
+        world: bool,
     },
 
     #[error("{}: node hierarchy is deeper than {max_depth} levels", path.display())]
@@ -171,5 +177,23 @@ impl SceneError {
             limit,
             limit_mib: limit as f64 / MIB,
         }
+    }
+}
+
+/// What is wrong with a position: non-finite, or too large.
+fn position_problem(position: &[f32; 3], world: bool) -> String {
+    let after = if world {
+        " after the node transform"
+    } else {
+        ""
+    };
+    if position.iter().all(|c| c.is_finite()) {
+        format!(
+            "is at {position:?}{after}, beyond the limit of {:e} on any coordinate (a scene \
+             this large overflows the tracer's f32 arithmetic)",
+            crate::MAX_COORDINATE
+        )
+    } else {
+        format!("has a non-finite position {position:?}{after}")
     }
 }

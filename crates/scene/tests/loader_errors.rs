@@ -138,7 +138,7 @@ fn nan_positions_are_an_error() {
     // (The builder's min/max skip the NaN, so the JSON itself stays valid.)
     let e = load(&write(dir.path(), "nan.gltf", &b.to_gltf_embedded())).unwrap_err();
     match &e {
-        SceneError::NonFinitePosition { vertex, .. } => assert_eq!(*vertex, 2),
+        SceneError::PositionOutOfRange { vertex, .. } => assert_eq!(*vertex, 2),
         _ => panic!("wrong error {e}"),
     }
 }
@@ -154,7 +154,8 @@ fn infinite_positions_after_transform_are_an_error() {
     }));
     b.add_root(n);
     let e = load(&write(dir.path(), "inf.gltf", &b.to_gltf_embedded())).unwrap_err();
-    assert!(matches!(e, SceneError::NonFinitePosition { .. }), "{e}");
+    assert!(matches!(e, SceneError::PositionOutOfRange { .. }), "{e}");
+    assert!(e.to_string().contains("has a non-finite position"), "{e}");
 }
 
 #[test]

@@ -23,6 +23,7 @@
 //! has left, ...) is skipped with one warning per kind in
 //! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
 
+mod accessor;
 mod budget;
 mod glb;
 mod graph;
@@ -67,6 +68,11 @@ pub struct LoadOptions {
 
 /// The scene `extras` key holding the environment radiance `[r, g, b]`.
 pub const ENVIRONMENT_EXTRAS_KEY: &str = "blueshift_environment";
+
+/// Vertex coordinates (in the file and in world space) must be smaller than this in magnitude:
+/// larger ones overflow the tracer's f32 arithmetic (squared extents, edge vectors) or lose
+/// the scene to rounding, and render a wrong image.
+pub const MAX_COORDINATE: f32 = 1e13;
 
 /// Deepest node hierarchy accepted.
 const MAX_NODE_DEPTH: usize = 256;

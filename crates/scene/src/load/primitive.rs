@@ -1,8 +1,13 @@
 //! One mesh primitive -> world-space triangles.
+//!
+//! Memory follows the file and the triangles kept, not the counts the file declares: sparse
+//! accessors without a bufferView stay sparse (`accessor::Elements`), indices are read as a
+//! stream, and only triangles with three distinct vertices are looked at further.
 
 use super::Ctx;
+use super::accessor::{self, Elements};
 use crate::scene::Triangle;
-use crate::{Result, SceneError};
+use crate::{MAX_COORDINATE, Result, SceneError};
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
@@ -48,60 +53,42 @@ pub(super) fn read(
     let pos_acc = prim
         .get(&gltf::Semantic::Positions)
         .ok_or_else(|| err("has no POSITION attribute".into()))?;
-    check_accessor(&pos_acc, &[Dimensions::Vec3], &[DataType::F32], buffers)
-        .map_err(|p| err(format!("POSITION {p}")))?;
-    let positions: Vec<Vec3> = reader
-        .read_positions()
-        .ok_or_else(|| err("POSITION data cannot be read".into()))?
-        .map(Vec3::from)
-        .collect();
-    if positions.len() != pos_acc.count() {
-        return Err(err("POSITION data is shorter than its count".into()));
-    }
-    let nonfinite = |vertex: usize, p: Vec3| SceneError::NonFinitePosition {
+    let positions = accessor::check(&pos_acc, &[Dimensions::Vec3], &[DataType::F32], buffers)
+        .and_then(|_| {
+            let dense = || Some(reader.read_positions()?.map(Vec3::from).collect());
+            accessor::read(&pos_acc, buffers, dense, accessor::vec3_f32, Vec3::ZERO)
+        })
+        .map_err(|p| err(format!("POSITION data cannot be read: {p}")))?;
+    let bad_position = |world: bool, (vertex, p): (usize, Vec3)| SceneError::PositionOutOfRange {
         path: ctx.path.to_path_buf(),
         mesh: mesh_name.clone(),
         primitive: prim.index(),
+        accessor: pos_acc.index(),
         vertex,
         position: p.to_array(),
+        world,
     };
-    if let Some((i, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-        return Err(nonfinite(i, *p));
+    let refused = |p: Vec3| !p.is_finite() || p.abs().cmpge(Vec3::splat(MAX_COORDINATE)).any();
+    if let Some(bad) = positions.find(refused) {
+        return Err(bad_position(false, bad));
     }
-    let world_pos: Vec<Vec3> = positions
-        .iter()
-        .map(|&p| world.transform_point3(p))
-        .collect();
-    if let Some((i, p)) = world_pos.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-        return Err(nonfinite(i, *p));
+    let world_pos = positions.map(|p| world.transform_point3(p));
+    if let Some(bad) = world_pos.find(refused) {
+        return Err(bad_position(true, bad));
     }
-    let n_verts = positions.len();
+    let n_verts = positions.count();
 
     // Normals (optional; flat normals are generated when missing, as glTF requires).
-    let mut normals: Option<Vec<Vec3>> = None;
+    let mut normals: Option<Elements<Vec3>> = None;
     if let Some(acc) = prim.get(&gltf::Semantic::Normals) {
-        let ok = check_accessor(&acc, &[Dimensions::Vec3], &[DataType::F32], buffers)
-            .and_then(|_| same_count(&acc, n_verts))
+        let read = accessor::check(&acc, &[Dimensions::Vec3], &[DataType::F32], buffers)
+            .and_then(|_| accessor::same_count(&acc, n_verts))
             .and_then(|_| {
-                let v: Vec<Vec3> = reader
-                    .read_normals()
-                    .ok_or("cannot be read")?
-                    .map(Vec3::from)
-                    .collect();
-                if v.len() == n_verts {
-                    Ok(v)
-                } else {
-                    Err("has the wrong count".into())
-                }
+                let dense = || Some(reader.read_normals()?.map(Vec3::from).collect());
+                accessor::read(&acc, buffers, dense, accessor::vec3_f32, Vec3::ZERO)
             });
-        match ok {
-            Ok(v) => {
-                normals = Some(
-                    v.iter()
-                        .map(|&n| (*normal_matrix * n).normalize_or_zero())
-                        .collect(),
-                )
-            }
+        match read {
+            Ok(v) => normals = Some(v.map(|n| (*normal_matrix * n).normalize_or_zero())),
             Err(p) => ctx.warnings.warn("normals", || {
                 format!("mesh {mesh_name}: NORMAL {p}; flat normals used instead")
             }),
@@ -109,29 +96,29 @@ pub(super) fn read(
     }
 
     // TEXCOORD_0 (optional).
-    let mut uvs: Option<Vec<Vec2>> = None;
+    let mut uvs: Option<Elements<Vec2>> = None;
     if let Some(acc) = prim.get(&gltf::Semantic::TexCoords(0)) {
-        let ok = check_accessor(
+        let read = accessor::check(
             &acc,
             &[Dimensions::Vec2],
             &[DataType::F32, DataType::U8, DataType::U16],
             buffers,
         )
-        .and_then(|_| same_count(&acc, n_verts))
+        .and_then(|_| accessor::same_count(&acc, n_verts))
         .and_then(|_| {
-            let v: Vec<Vec2> = reader
-                .read_tex_coords(0)
-                .ok_or("cannot be read")?
-                .into_f32()
-                .map(Vec2::from)
-                .collect();
-            if v.len() == n_verts {
-                Ok(v)
-            } else {
-                Err("has the wrong count".into())
-            }
+            let dense = || {
+                Some(
+                    reader
+                        .read_tex_coords(0)?
+                        .into_f32()
+                        .map(Vec2::from)
+                        .collect(),
+                )
+            };
+            let decode = accessor::vec2_decoder(acc.data_type());
+            accessor::read(&acc, buffers, dense, decode, Vec2::ZERO)
         });
-        match ok {
+        match read {
             Ok(v) => uvs = Some(v),
             Err(p) => ctx.warnings.warn("uv", || {
                 format!("mesh {mesh_name}: TEXCOORD_0 {p}; zero UVs used instead")
@@ -139,66 +126,127 @@ pub(super) fn read(
         }
     }
 
-    // Indices (optional: non-indexed geometry uses consecutive vertices).
-    let indices: Vec<u32> = match prim.indices() {
+    let material = match prim.material().index() {
+        Some(i) => i as u32,
+        None => default_material,
+    };
+    let mut emit = Emit {
+        world_pos: &world_pos,
+        normals: normals.as_ref(),
+        uvs: uvs.as_ref(),
+        material,
+        flip: world.determinant() < 0.0,
+        out,
+        zero_area: 0,
+    };
+
+    // Indices (optional: non-indexed geometry uses consecutive vertices), read as a stream:
+    // a sparse index accessor declares any number of zeros without storing them.
+    let index_count = match prim.indices() {
         Some(acc) => {
-            check_accessor(
+            accessor::check(
                 &acc,
                 &[Dimensions::Scalar],
                 &[DataType::U8, DataType::U16, DataType::U32],
                 buffers,
             )
             .map_err(|p| err(format!("indices {p}")))?;
-            let v: Vec<u32> = reader
+            let stream = reader
                 .read_indices()
-                .ok_or_else(|| err("indices cannot be read".into()))?
-                .into_u32()
-                .collect();
-            if let Some(&bad) = v.iter().find(|&&i| i as usize >= n_verts) {
-                return Err(SceneError::IndexOutOfRange {
-                    path: ctx.path.to_path_buf(),
-                    mesh: mesh_name.clone(),
-                    primitive: prim.index(),
-                    index: bad,
-                    vertex_count: n_verts,
-                });
+                .ok_or_else(|| {
+                    err(format!(
+                        "indices (accessor {}) cannot be read: the glTF reader found no data",
+                        acc.index()
+                    ))
+                })?
+                .into_u32();
+            let mut tri = [0usize; 3];
+            for (k, i) in stream.enumerate() {
+                if i as usize >= n_verts {
+                    return Err(SceneError::IndexOutOfRange {
+                        path: ctx.path.to_path_buf(),
+                        mesh: mesh_name.clone(),
+                        primitive: prim.index(),
+                        index: i,
+                        vertex_count: n_verts,
+                    });
+                }
+                tri[k % 3] = i as usize;
+                if k % 3 == 2 {
+                    emit.triangle(tri);
+                }
             }
-            v
+            acc.count()
         }
-        None => (0..n_verts as u32).collect(),
+        None => {
+            match &positions {
+                Elements::Dense(_) => (0..n_verts / 3).for_each(|t| emit.consecutive(t)),
+                // Only a triangle with two stored vertices can have area: the others have
+                // two vertices at the same point. Each is counted, none is expanded.
+                Elements::Sparse { indices, .. } => {
+                    let mut candidates: Vec<usize> = indices
+                        .iter()
+                        .map(|&i| i as usize / 3)
+                        .filter(|&t| t < n_verts / 3)
+                        .collect();
+                    candidates.dedup();
+                    emit.zero_area += n_verts / 3 - candidates.len();
+                    candidates.into_iter().for_each(|t| emit.consecutive(t));
+                }
+            }
+            n_verts
+        }
     };
-    if indices.len() % 3 != 0 {
+    ctx.zero_area += emit.zero_area;
+    if index_count % 3 != 0 {
         ctx.warnings.warn("index-count", || {
             format!(
-                "mesh {mesh_name}: index count {} is not a multiple of 3; the rest is ignored",
-                indices.len()
+                "mesh {mesh_name}: index count {index_count} is not a multiple of 3; the rest \
+                 is ignored"
             )
         });
     }
+    Ok(())
+}
 
-    let material = match prim.material().index() {
-        Some(i) => i as u32,
-        None => default_material,
-    };
-    let flip = world.determinant() < 0.0;
-    for tri in indices.chunks_exact(3) {
-        let mut ix = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
-        if flip {
+/// Turns vertex triples into triangles, counting the zero-area ones.
+struct Emit<'a> {
+    world_pos: &'a Elements<Vec3>,
+    normals: Option<&'a Elements<Vec3>>,
+    uvs: Option<&'a Elements<Vec2>>,
+    material: u32,
+    /// A mirroring transform: the winding is flipped to keep the front face.
+    flip: bool,
+    out: &'a mut Vec<Triangle>,
+    zero_area: usize,
+}
+
+impl Emit<'_> {
+    /// Triangle `t` of non-indexed geometry.
+    fn consecutive(&mut self, t: usize) {
+        self.triangle([3 * t, 3 * t + 1, 3 * t + 2]);
+    }
+
+    fn triangle(&mut self, mut ix: [usize; 3]) {
+        if ix[0] == ix[1] || ix[1] == ix[2] || ix[0] == ix[2] {
+            self.zero_area += 1; // a repeated vertex
+            return;
+        }
+        if self.flip {
             ix.swap(1, 2);
         }
-        let p = ix.map(|i| world_pos[i]);
+        let p = ix.map(|i| self.world_pos.get(i));
         // In f64 so huge-but-finite coordinates do not overflow into a false "zero area".
         let face = (p[1] - p[0]).as_dvec3().cross((p[2] - p[0]).as_dvec3());
         let len = face.length();
-        let has_area = len.is_finite() && len > 0.0;
-        if !has_area {
-            ctx.zero_area += 1;
-            continue;
+        if !(len.is_finite() && len > 0.0) {
+            self.zero_area += 1;
+            return;
         }
         let face = (face / len).as_vec3();
-        let n = match &normals {
+        let n = match self.normals {
             Some(ns) => ix.map(|i| {
-                let n = ns[i];
+                let n = ns.get(i);
                 if n.is_finite() && n != Vec3::ZERO {
                     n
                 } else {
@@ -207,92 +255,18 @@ pub(super) fn read(
             }),
             None => [face; 3],
         };
-        let uv = match &uvs {
-            Some(us) => ix.map(|i| if us[i].is_finite() { us[i] } else { Vec2::ZERO }),
+        let uv = match self.uvs {
+            Some(us) => ix.map(|i| {
+                let uv = us.get(i);
+                if uv.is_finite() { uv } else { Vec2::ZERO }
+            }),
             None => [Vec2::ZERO; 3],
         };
-        out.push(Triangle {
+        self.out.push(Triangle {
             positions: p,
             normals: n,
             uvs: uv,
-            material,
+            material: self.material,
         });
     }
-    Ok(())
-}
-
-/// A vertex attribute must have one element per vertex; checked before it is read, since a
-/// sparse accessor's count is not bounded by any data in the file.
-fn same_count(acc: &gltf::Accessor, n_verts: usize) -> std::result::Result<(), String> {
-    if acc.count() == n_verts {
-        Ok(())
-    } else {
-        Err("has the wrong count".into())
-    }
-}
-
-/// Checks type, count and that the accessor's bytes lie inside its buffer view and buffer, so
-/// the reader can neither panic nor silently read garbage.
-pub(super) fn check_accessor(
-    acc: &gltf::Accessor,
-    dims: &[Dimensions],
-    types: &[DataType],
-    buffers: &[gltf::buffer::Data],
-) -> std::result::Result<(), String> {
-    let i = acc.index();
-    if !dims.contains(&acc.dimensions()) {
-        return Err(format!(
-            "accessor {i} has type {:?}, expected {dims:?}",
-            acc.dimensions()
-        ));
-    }
-    if !types.contains(&acc.data_type()) {
-        return Err(format!(
-            "accessor {i} has component type {:?}, expected {types:?}",
-            acc.data_type()
-        ));
-    }
-    if acc.count() == 0 {
-        return Err(format!("accessor {i} has count 0"));
-    }
-    let view = match (acc.view(), acc.sparse()) {
-        (Some(v), _) => v,
-        (None, Some(_)) => return Ok(()), // sparse on zeros: the reader bounds-checks it
-        (None, None) => {
-            return Err(format!(
-                "accessor {i} has neither bufferView nor sparse data"
-            ));
-        }
-    };
-    let elem = acc.size() as u64;
-    let stride = view.stride().map(|s| s as u64).unwrap_or(elem);
-    if stride < elem {
-        return Err(format!(
-            "accessor {i}: byteStride {stride} is smaller than an element ({elem})"
-        ));
-    }
-    let end = (acc.count() as u64 - 1)
-        .checked_mul(stride)
-        .and_then(|x| x.checked_add(acc.offset() as u64 + elem));
-    if end.is_none_or(|e| e > view.length() as u64) {
-        return Err(format!(
-            "accessor {i} reads past the end of bufferView {} ({} bytes)",
-            view.index(),
-            view.length()
-        ));
-    }
-    let buf = view.buffer();
-    let available = buffers
-        .get(buf.index())
-        .map(|d| d.len() as u64)
-        .unwrap_or(0);
-    if view.offset() as u64 + view.length() as u64 > available.min(buf.length() as u64) {
-        return Err(format!(
-            "bufferView {} extends past the end of buffer {} ({} bytes)",
-            view.index(),
-            buf.index(),
-            buf.length()
-        ));
-    }
-    Ok(())
 }

@@ -154,6 +154,22 @@ pub fn embedded_uri(bin: &[u8]) -> String {
         .to_string()
 }
 
+/// A `size` x `size` PNG of one RGBA colour.
+pub fn solid_png(size: u32, rgba: [u8; 4]) -> Vec<u8> {
+    let mut png = Vec::new();
+    image::RgbaImage::from_pixel(size, size, image::Rgba(rgba))
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .expect("encode");
+    png
+}
+
+/// Asserts that `text` contains each of `parts`.
+pub fn assert_contains(text: &str, parts: &[&str]) {
+    for part in parts {
+        assert!(text.contains(part), "{text:?} lacks {part:?}");
+    }
+}
+
 /// Loads quietly.
 pub fn load(path: &Path) -> Result<Scene, blueshift_scene::SceneError> {
     Scene::load_with(
