@@ -23,6 +23,32 @@ pub enum SceneError {
         source: gltf::Error,
     },
 
+    /// `asset.version` (or `asset.minVersion`) other than 2.x.
+    #[error("{}: asset.{field} {version}: only glTF 2.0 is supported", path.display())]
+    Version {
+        path: PathBuf,
+        field: &'static str,
+        version: String,
+    },
+
+    /// An extension in `extensionsRequired` that the loader does not implement.
+    #[error("{}: requires unsupported extension {extension}", path.display())]
+    UnsupportedExtension { path: PathBuf, extension: String },
+
+    /// A rule of the glTF 2.0 specification that the reader does not check itself (e.g.
+    /// `byteStride` a multiple of 4).
+    #[error("{}: not a valid glTF 2.0 file: {problem}", path.display())]
+    Spec { path: PathBuf, problem: String },
+
+    /// A light (punctual, or an emissive material) whose radiance overflows f32.
+    #[error("{}: {what} {problem}", path.display())]
+    Light {
+        path: PathBuf,
+        /// `KHR_lights_punctual light 0`, `material 2 ('lamp')`.
+        what: String,
+        problem: String,
+    },
+
     /// A GLB header or chunk header that is inconsistent (a length below the header size or
     /// past the end, a wrong version or chunk type). Checked before the glTF reader, which
     /// panics on some of these.

@@ -146,3 +146,151 @@ fn unreadable_position_data_says_why() {
         assert!(msg.contains(want), "{msg}");
     }
 }
+
+#[test]
+fn a_light_whose_radiance_overflows_is_an_error() {
+    // shared/inputs/light_overflow_black.gltf: colour 1e38 x intensity 1e38 rendered black.
+    let dir = tmp();
+    let seed = include_bytes!("data/light_overflow_black.gltf");
+    let p = write(dir.path(), "light.gltf", seed);
+    let e = load(&p).unwrap_err();
+    assert!(matches!(e, SceneError::Light { .. }), "{e}");
+    let parts = [
+        "light.gltf: KHR_lights_punctual light 0 has color",
+        "[1e38, 1e38, 1e38] times intensity 1e38, which overflows f32",
+    ];
+    assert_contains(&e.to_string(), &parts);
+
+    // The same for an emissive material: factor x strength.
+    let mut doc = quad_doc();
+    doc["materials"][0]["name"] = json!("lamp");
+    doc["materials"][0]["emissiveFactor"] = json!([4.0, 1.0, 1.0]);
+    doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] =
+        json!(1.0e38);
+    let e = load(&write_json(dir.path(), "lamp.gltf", &doc)).unwrap_err();
+    assert!(matches!(e, SceneError::Light { .. }), "{e}");
+    assert!(
+        e.to_string()
+            .contains("lamp.gltf: material 0 ('lamp') has emissiveFactor [4.0, 1.0, 1.0]"),
+        "{e}"
+    );
+    // A strength beyond f32 (read as infinity) once made the emission silently zero.
+    doc["materials"][0]["emissiveFactor"] = json!([1.0, 1.0, 1.0]);
+    doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] =
+        json!(1.0e39);
+    let e = load(&write_json(dir.path(), "inf.gltf", &doc)).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("times emissiveStrength inf, which is not finite"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_byte_stride_that_is_not_a_multiple_of_4_is_refused() {
+    let dir = tmp();
+    for stride in [6, 2, 256] {
+        let mut doc = quad_doc();
+        doc["bufferViews"][0]["byteStride"] = json!(stride);
+        let e = load(&write_json(dir.path(), "stride.gltf", &doc)).unwrap_err();
+        assert!(matches!(e, SceneError::Spec { .. }), "{e}");
+        let want = format!(
+            "stride.gltf: not a valid glTF 2.0 file: bufferViews[0].byteStride is {stride}; it \
+             must be a multiple of 4 from 4 to 252"
+        );
+        assert!(e.to_string().ends_with(&want), "{e}");
+    }
+}
+
+#[test]
+fn only_gltf_2_is_read() {
+    let dir = tmp();
+    let good = quad_doc();
+    let cases = [
+        (
+            json!({ "version": "3.0" }),
+            "asset.version 3.0: only glTF 2.0 is supported",
+        ),
+        (
+            json!({ "version": "2.0", "minVersion": "2.1" }),
+            "asset.minVersion 2.1: only glTF 2.0 is supported",
+        ),
+        (
+            json!({ "version": "20.0" }),
+            "asset.version 20.0: only glTF 2.0 is supported",
+        ),
+    ];
+    for (asset, want) in cases {
+        let mut doc = good.clone();
+        doc["asset"] = asset;
+        let e = load(&write_json(dir.path(), "v.gltf", &doc)).unwrap_err();
+        assert!(matches!(e, SceneError::Version { .. }), "{e}");
+        assert!(e.to_string().ends_with(&format!("v.gltf: {want}")), "{e}");
+    }
+    // A glTF 1.0 file (objects keyed by id, not arrays) is named by its version, not by the
+    // first field the 2.0 reader trips over.
+    let v1 = json!({ "asset": { "version": "1.0" }, "meshes": { "m": { "primitives": [] } } });
+    let e = load(&write_json(dir.path(), "v1.gltf", &v1)).unwrap_err();
+    assert!(
+        e.to_string()
+            .ends_with("asset.version 1.0: only glTF 2.0 is supported"),
+        "{e}"
+    );
+    // 2.x minor versions are glTF 2.0 files.
+    let mut doc = good;
+    doc["asset"]["version"] = json!("2.1");
+    assert_eq!(
+        triangles(&write_json(dir.path(), "v21.gltf", &doc), None),
+        2
+    );
+}
+
+#[test]
+fn a_required_extension_the_loader_lacks_is_named() {
+    let dir = tmp();
+    for (ext, refused) in [
+        ("EXT_unknown", true),
+        ("KHR_texture_transform", true),
+        ("KHR_materials_emissive_strength", false),
+    ] {
+        let mut doc = quad_doc();
+        doc["extensionsUsed"] = json!([ext]);
+        doc["extensionsRequired"] = json!([ext]);
+        let p = write_json(dir.path(), "req.gltf", &doc);
+        if refused {
+            let e = load(&p).unwrap_err();
+            assert!(matches!(e, SceneError::UnsupportedExtension { .. }), "{e}");
+            assert!(
+                e.to_string()
+                    .ends_with(&format!("req.gltf: requires unsupported extension {ext}")),
+                "{e}"
+            );
+        } else {
+            assert_eq!(triangles(&p, None), 2);
+        }
+    }
+}
+
+#[test]
+fn a_byte_order_mark_is_accepted() {
+    let dir = tmp();
+    let mut bytes = b"\xEF\xBB\xBF".to_vec();
+    bytes.extend_from_slice(&one_quad().to_gltf_embedded());
+    assert_eq!(triangles(&write(dir.path(), "bom.gltf", &bytes), None), 2);
+}
+
+#[test]
+fn the_environment_survives_a_deeply_nested_sibling_in_extras() {
+    // serde_json stops at 128 levels; a sibling 200 deep once dropped the whole `extras`.
+    let dir = tmp();
+    let mut doc = quad_doc();
+    doc["scenes"][0]["extras"] = json!("EXTRAS");
+    let deep = format!("{}1{}", "[".repeat(200), "]".repeat(200));
+    let extras = format!(r#"{{"deep":{deep},"blueshift_environment":[0.5,0.25,1.0]}}"#);
+    let text = serde_json::to_string(&doc)
+        .expect("json")
+        .replace("\"EXTRAS\"", &extras);
+    let s = load(&write(dir.path(), "deep.gltf", text.as_bytes())).expect("loads");
+    assert_eq!(s.environment, glam::Vec3::new(0.5, 0.25, 1.0));
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+}

@@ -4,28 +4,32 @@
 //! list and index (a hostile file would make it panic).
 
 use super::Warnings;
-use crate::{LightKind, PunctualLight};
+use crate::{LightKind, PunctualLight, SceneError};
 use glam::{Mat4, Vec3};
 use gltf::json::extensions::scene::khr_lights_punctual::{Light, Type};
 use gltf::json::validation::Checked;
+use std::path::Path;
 
 /// The light attached to `node`, transformed by `world`, or `None` (with a warning when the
-/// light exists but cannot be used).
+/// light exists but cannot be used). A light whose `color * intensity` overflows f32 is an
+/// error: skipped or clamped, it would leave a wrong image without a word about why.
 pub(crate) fn read(
+    path: &Path,
     document: &gltf::Document,
     node: &gltf::Node,
     world: &Mat4,
     warnings: &mut Warnings,
-) -> Option<PunctualLight> {
+) -> Result<Option<PunctualLight>, SceneError> {
     let root = document.as_json();
-    let index = root
+    let Some(index) = root
         .nodes
-        .get(node.index())?
-        .extensions
-        .as_ref()?
-        .khr_lights_punctual
-        .as_ref()?
-        .light;
+        .get(node.index())
+        .and_then(|n| n.extensions.as_ref())
+        .and_then(|e| e.khr_lights_punctual.as_ref())
+        .map(|l| l.light)
+    else {
+        return Ok(None);
+    };
     let Some(light) = root.get(index) else {
         warnings.warn("light-index", || {
             format!(
@@ -34,9 +38,25 @@ pub(crate) fn read(
                 index.value()
             )
         });
-        return None;
+        return Ok(None);
     };
-    convert(index.value(), light, world, warnings)
+    // Valid factors (finite, >= 0; others are skipped with a warning below) whose product
+    // is not.
+    let color = Vec3::from_array(light.color);
+    let valid = |x: f32| x.is_finite() && x >= 0.0;
+    let valid_factors = valid(light.intensity) && color.to_array().into_iter().all(valid);
+    if valid_factors && !(color * light.intensity).is_finite() {
+        return Err(SceneError::Light {
+            path: path.to_path_buf(),
+            what: format!("KHR_lights_punctual light {}", index.value()),
+            problem: format!(
+                "has color {:?} times intensity {:?}, which overflows f32 (infinite radiance \
+                 renders black); scale the light down",
+                light.color, light.intensity
+            ),
+        });
+    }
+    Ok(convert(index.value(), light, world, warnings))
 }
 
 fn convert(

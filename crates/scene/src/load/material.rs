@@ -1,6 +1,7 @@
 //! Materials, textures and images.
 
 use super::Ctx;
+use crate::SceneError;
 use crate::scene::{Image, Material, Texture, Wrap};
 use glam::Vec3;
 use gltf::image::Format;
@@ -157,13 +158,14 @@ pub(super) fn load_textures(
 }
 
 /// Reads every material. Texture indices are remapped to the usable textures, which are
-/// appended to `textures` (compacted: undecodable ones are dropped).
+/// appended to `textures` (compacted: undecodable ones are dropped). An emission (factor times
+/// strength) that overflows f32 is an error.
 pub(super) fn load_materials(
     document: &gltf::Document,
     all_textures: &[Option<Texture>],
     textures: &mut Vec<Texture>,
     ctx: &mut Ctx,
-) -> Vec<Material> {
+) -> Result<Vec<Material>, SceneError> {
     let mut remap: Vec<Option<u32>> = vec![None; all_textures.len()];
     let mut use_texture = |info: Option<gltf::texture::Info>, slot: &str, ctx: &mut Ctx| {
         let info = info?;
@@ -203,18 +205,33 @@ pub(super) fn load_materials(
         }
         let finite = |x: f32, default: f32| if x.is_finite() { x } else { default };
         let bc = pbr.base_color_factor().map(|x| finite(x, 1.0).max(0.0));
-        let emissive = Vec3::from(m.emissive_factor()) * strength;
+        // Non-finite emission (a product that overflows f32, or a strength written as 1e39)
+        // would render black or NaN: an error, not a silent zero.
+        let factor = Vec3::from(m.emissive_factor());
+        let emissive = if factor == Vec3::ZERO {
+            Vec3::ZERO
+        } else {
+            factor * strength
+        };
+        if !emissive.is_finite() {
+            let name = m.name().map_or(String::new(), |n| format!(" ('{n}')"));
+            return Err(SceneError::Light {
+                path: ctx.path.to_path_buf(),
+                what: format!("material {}{name}", m.index().unwrap_or_default()),
+                problem: format!(
+                    "has emissiveFactor {:?} times emissiveStrength {strength:?}, which is not \
+                     finite in f32 (infinite radiance renders black); scale the emission down",
+                    factor.to_array()
+                ),
+            });
+        }
         let (specular, specular_color) = specular_of(&m, ctx);
         out.push(Material {
             name: m.name().map(str::to_string),
             base_color: bc,
             metallic: finite(pbr.metallic_factor(), 1.0).clamp(0.0, 1.0),
             roughness: finite(pbr.roughness_factor(), 1.0).clamp(0.0, 1.0),
-            emissive: if emissive.is_finite() {
-                emissive.max(Vec3::ZERO)
-            } else {
-                Vec3::ZERO
-            },
+            emissive: emissive.max(Vec3::ZERO),
             specular,
             specular_color,
             base_color_texture: use_texture(pbr.base_color_texture(), "base color", ctx),
@@ -227,7 +244,7 @@ pub(super) fn load_materials(
             double_sided: m.double_sided(),
         });
     }
-    out
+    Ok(out)
 }
 
 /// KHR_materials_specular factors (1 and white without the extension). Its textures are

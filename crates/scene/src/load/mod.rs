@@ -145,13 +145,16 @@ fn load_inner(
         path: path.to_path_buf(),
         source,
     };
+    // A UTF-8 byte-order mark before the JSON is allowed (the reader would stop at it).
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let glb = glb::check(bytes).map_err(|problem| SceneError::Glb {
         path: path.to_path_buf(),
         problem,
     })?;
     let trailing = bytes.len() - glb.len();
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice_without_validation(glb).map_err(parse)?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(glb)
+        .map_err(|e| precheck::version_of_unreadable(path, glb).unwrap_or_else(|| parse(e)))?;
+    precheck::spec(path, document.as_json())?;
     let problems = precheck::check(document.as_json());
     if !problems.is_empty() {
         return Err(parse(gltf::Error::Validation(problems)));
@@ -185,7 +188,8 @@ fn load_inner(
     let (images, image_map) = material::load_images(&document, base, budget.texels, &mut ctx);
     let all_textures = material::load_textures(&document, &image_map);
     let mut textures = Vec::new();
-    let mut materials = material::load_materials(&document, &all_textures, &mut textures, &mut ctx);
+    let mut materials =
+        material::load_materials(&document, &all_textures, &mut textures, &mut ctx)?;
     let images = compact_images(images, &mut textures);
     let default_material = materials.len() as u32;
     materials.push(Material {
@@ -218,7 +222,7 @@ fn load_inner(
                 "skinning ignored: meshes are drawn in bind pose".into()
             });
         }
-        if let Some(light) = lights::read(&document, &node, &world, &mut ctx.warnings) {
+        if let Some(light) = lights::read(path, &document, &node, &world, &mut ctx.warnings)? {
             punctual.push(light);
         }
         if let Some(cam) = node.camera() {
@@ -361,12 +365,17 @@ fn environment_from_extras(extras: &gltf::json::Extras, warnings: &mut Warnings)
     let Some(raw) = extras else {
         return Vec3::ZERO;
     };
-    let Ok(value) = serde_json::from_str::<serde_json::Value>(raw.get()) else {
+    // Only the key is parsed into values: the others stay raw, so a sibling nested deeper than
+    // serde_json's recursion limit (128) cannot make the whole `extras` unreadable.
+    type Raw<'a> = std::collections::HashMap<String, &'a serde_json::value::RawValue>;
+    let Ok(entries) = serde_json::from_str::<Raw>(raw.get()) else {
         return Vec3::ZERO;
     };
-    let Some(env) = value.get(ENVIRONMENT_EXTRAS_KEY) else {
+    let Some(raw_env) = entries.get(ENVIRONMENT_EXTRAS_KEY) else {
         return Vec3::ZERO;
     };
+    let env = serde_json::from_str::<serde_json::Value>(raw_env.get())
+        .unwrap_or_else(|_| serde_json::Value::String(raw_env.get().chars().take(80).collect()));
     let rgb: Option<Vec<f32>> = env.as_array().map(|a| {
         a.iter()
             .filter_map(|v| v.as_f64().map(|x| x as f32))

@@ -2,7 +2,85 @@
 //! these instead of reporting them. Run on the parsed JSON before the reader's validation;
 //! problems are reported like the reader's own validation errors.
 
+use crate::SceneError;
 use gltf::json::{Path, Root, mesh::Semantic, validation::Checked, validation::Error};
+
+/// Extensions the loader implements, so a file may require them (`extensionsRequired`).
+/// Others it ignores with a warning, or reads in part (`KHR_texture_transform`: textures are
+/// sampled without the transform), so a file that requires them is refused.
+const IMPLEMENTED_EXTENSIONS: [&str; 3] = [
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_specular",
+];
+
+/// Rules refused with their own error, before the reader's validation: a glTF version other
+/// than 2.x, a required extension the loader does not implement, and `byteStride` values the
+/// specification forbids (a multiple of 4 in 4..=252; the reader checks only the range).
+pub(crate) fn spec(path: &std::path::Path, root: &Root) -> Result<(), SceneError> {
+    // A 2.x file may be read by a 2.0 loader unless its minVersion says it needs more.
+    let asset = &root.asset;
+    let refused = [
+        ("version", Some(&asset.version).filter(|v| !is_2x(v))),
+        (
+            "minVersion",
+            asset.min_version.as_ref().filter(|&v| v != "2.0"),
+        ),
+    ];
+    if let Some((field, Some(v))) = refused.into_iter().find(|(_, v)| v.is_some()) {
+        return Err(SceneError::Version {
+            path: path.to_path_buf(),
+            field,
+            version: v.clone(),
+        });
+    }
+    if let Some(ext) = root
+        .extensions_required
+        .iter()
+        .find(|e| !IMPLEMENTED_EXTENSIONS.contains(&e.as_str()))
+    {
+        return Err(SceneError::UnsupportedExtension {
+            path: path.to_path_buf(),
+            extension: ext.clone(),
+        });
+    }
+    for (i, view) in root.buffer_views.iter().enumerate() {
+        if let Some(stride) = view.byte_stride.map(|s| s.0)
+            && (stride % 4 != 0 || !(4..=252).contains(&stride))
+        {
+            return Err(SceneError::Spec {
+                path: path.to_path_buf(),
+                problem: format!(
+                    "bufferViews[{i}].byteStride is {stride}; it must be a multiple of 4 from 4 \
+                     to 252"
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// For a file the reader cannot parse: the version error, if its `asset.version` can be read
+/// and is not 2.x (a glTF 1.0 or 3.0 file fails for that reason, not for its layout).
+pub(crate) fn version_of_unreadable(path: &std::path::Path, json: &[u8]) -> Option<SceneError> {
+    let value: serde_json::Value = serde_json::from_slice(json).ok()?;
+    let version = value.get("asset")?.get("version")?;
+    let text = version
+        .as_str()
+        .map_or_else(|| version.to_string(), str::to_string);
+    (!is_2x(&text)).then(|| SceneError::Version {
+        path: path.to_path_buf(),
+        field: "version",
+        version: text,
+    })
+}
+
+/// `2.0`, `2.1`, ...: what a glTF 2.0 loader may read.
+fn is_2x(version: &str) -> bool {
+    version
+        .strip_prefix("2.")
+        .is_some_and(|minor| !minor.is_empty() && minor.bytes().all(|b| b.is_ascii_digit()))
+}
 
 /// Every problem as a (JSON path, error) pair, in the reader's validation format.
 pub(crate) fn check(root: &Root) -> Vec<(Path, Error)> {
