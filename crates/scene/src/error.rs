@@ -55,6 +55,24 @@ pub enum SceneError {
     #[error("{}: not a valid glTF 2.0 file: {problem}", path.display())]
     Glb { path: PathBuf, problem: String },
 
+    /// A buffer or image URI that leads outside the directory of the scene file (an absolute
+    /// path, a `file:` URI, `..` climbing out, or a symlink whose target lies outside); refused
+    /// unless [`crate::LoadOptions::allow_outside_paths`] is set.
+    #[error(
+        "{}: {what} URI '{uri}' points outside the scene directory {} ({reason}); reading it \
+         needs --allow-outside-paths",
+        path.display(),
+        dir.display()
+    )]
+    OutsidePath {
+        path: PathBuf,
+        /// `buffer 0`, `image 3`.
+        what: String,
+        uri: String,
+        dir: PathBuf,
+        reason: String,
+    },
+
     #[error("{}: buffer {index} ({uri}): {problem}", path.display())]
     Buffer {
         path: PathBuf,

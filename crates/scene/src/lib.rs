@@ -23,6 +23,7 @@ pub mod bvh;
 mod camera;
 mod environment;
 mod error;
+mod files;
 mod geometry;
 pub mod gpu;
 mod intersect;
@@ -38,6 +39,7 @@ pub use environment::{
     env_texel_of, env_uv,
 };
 pub use error::SceneError;
+pub use files::{open_regular, read_regular};
 pub use geometry::Aabb;
 pub use gpu::{
     BvhNode, GpuBuffer, GpuLight, GpuMaterial, GpuTexture, GpuTriangle, Hit, Ray, SceneGpu,

@@ -125,8 +125,8 @@ impl Scene {
     }
 
     /// Loads a `.gltf` (JSON) or `.glb` from memory. External buffer and image URIs are
-    /// resolved against `base` (with `None` they are an error); errors name the source
-    /// `<memory>`.
+    /// resolved against `base` (with `None` they are an error) and must stay inside it unless
+    /// [`LoadOptions::allow_outside_paths`] is set; errors name the source `<memory>`.
     pub fn from_slice(bytes: &[u8], base: Option<&Path>, options: &LoadOptions) -> Result<Scene> {
         load::load_bytes(Path::new("<memory>"), bytes, base, options)
     }

@@ -302,11 +302,26 @@ fn from_slice_loads_embedded_and_glb_but_not_external_buffers() {
 #[test]
 fn device_files_and_bad_percent_encoding_are_errors_not_hangs_or_panics() {
     let dir = tmp();
+    let allowed = blueshift_scene::LoadOptions {
+        quiet: true,
+        allow_outside_paths: true,
+        ..Default::default()
+    };
     for uri in ["/dev/zero", "file:///dev/zero", "%FF%FE.bin"] {
         let mut doc = one_quad().json(Some(embedded_uri(one_quad().bin())));
         doc["buffers"][0]["uri"] = json!(uri);
-        let e = load(&write_json(dir.path(), "uri.gltf", &doc)).unwrap_err();
+        let p = write_json(dir.path(), "uri.gltf", &doc);
+        // Outside the scene directory: refused before anything is opened.
+        let e = load(&p).unwrap_err();
+        let outside = matches!(e, SceneError::OutsidePath { .. });
+        assert!(outside == uri.contains("dev"), "{uri}: {e}");
+        // Allowed, the device is still refused, unopened.
+        let e = Scene::load_with(&p, &allowed).unwrap_err();
         assert!(matches!(e, SceneError::Buffer { .. }), "{uri}: {e}");
+        if uri.contains("dev") {
+            let want = "/dev/zero: not a regular file (a character device)";
+            assert!(e.to_string().contains(want), "{e}");
+        }
     }
 }
 

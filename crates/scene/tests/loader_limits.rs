@@ -172,10 +172,7 @@ fn a_huge_image_header_is_skipped_with_a_warning_without_decoding() {
 #[test]
 fn images_beyond_the_texel_budget_are_skipped_in_order() {
     // Three decodable 4x4 textures; a budget of 40 texels holds two of them.
-    let mut png = Vec::new();
-    image::RgbaImage::from_pixel(4, 4, image::Rgba([200, 100, 50, 255]))
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .expect("encode");
+    let png = common::solid_png(4, [200, 100, 50, 255]);
     let mut b = GltfBuilder::new();
     for k in 0..3 {
         let tex = b.add_png_texture(&format!("t{k}"), &png, json!({}));

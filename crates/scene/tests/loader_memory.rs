@@ -1,11 +1,12 @@
 //! Memory in proportion to the file: what the loader allocates, measured by a counting
 //! allocator on the loading thread (no timings). Files that declare far more than they hold
-//! (sparse accessors without a bufferView) must cost what they hold.
+//! (sparse accessors without a bufferView, a buffer file longer than its byteLength, images no
+//! material uses) must cost what they hold.
 
 mod common;
 
 use blueshift_scene::{LoadOptions, Scene};
-use common::embedded_uri;
+use common::{embedded_uri, one_quad, write_json};
 use serde_json::json;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -160,4 +161,51 @@ fn sparse_only_attributes_and_indices_stay_sparse() {
             "indexed {indexed}"
         );
     }
+}
+
+#[test]
+fn images_no_material_uses_are_not_read() {
+    // A 4096 x 4096 PNG (64 MiB decoded) and a missing file, both unused: neither is decoded
+    // nor opened, and neither gets a warning.
+    let png = common::solid_png(4096, [9, 9, 9, 255]);
+    let mut b = one_quad();
+    b.add_png_texture("unused", &png, json!({}));
+    let mut doc = b.json(Some(embedded_uri(b.bin())));
+    doc["images"]
+        .as_array_mut()
+        .expect("images")
+        .push(json!({ "uri": "missing.png" }));
+    let dir = tempfile::tempdir().expect("tempdir");
+    let p = write_json(dir.path(), "unused.gltf", &doc);
+    let options = LoadOptions {
+        quiet: true,
+        ..Default::default()
+    };
+    let (scene, peak) = peak_during(|| Scene::load_with(&p, &options));
+    let scene = scene.expect("loads");
+    assert!(scene.images.is_empty());
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    // The file and its decoded buffer are held; 64 MiB of texels are not.
+    let file = std::fs::metadata(&p).expect("file").len() as usize;
+    assert!(peak < 3 * file + MIB, "{peak} bytes for a {file}-byte file");
+}
+
+#[test]
+fn a_buffer_file_longer_than_its_byte_length_is_not_read_whole() {
+    // 64 MiB on disk behind a 200-byte buffer: 200 bytes are read.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let b = one_quad();
+    let doc = b.json(Some("long.bin".into()));
+    let mut long = b.bin().to_vec();
+    long.resize(64 * MIB, 7);
+    std::fs::write(dir.path().join("long.bin"), &long).expect("write");
+    drop(long);
+    let p = write_json(dir.path(), "long.gltf", &doc);
+    let options = LoadOptions {
+        quiet: true,
+        ..Default::default()
+    };
+    let (scene, peak) = peak_during(|| Scene::load_with(&p, &options));
+    assert_eq!(scene.expect("loads").triangles.len(), 2);
+    assert!(peak < MIB, "{peak} bytes");
 }

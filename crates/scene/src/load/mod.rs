@@ -13,14 +13,24 @@
 //! caller may then light a dark scene with [`Scene::light_if_dark`]).
 //!
 //! Bad data: a missing file, malformed JSON/GLB (GLB headers are checked before the reader
-//! sees them, see `glb`), missing buffers, unreadable accessors, out-of-range vertex indices
-//! and non-finite positions are errors ([`SceneError`]). So are a node graph that is not a
-//! tree and a scene over [`LoadBudget`]: both are checked from the JSON before the scene is
-//! expanded (`graph`, `budget`), so memory stays proportional to the file and to the scene.
+//! sees them, see `glb`), a version other than 2.x, a required extension the loader lacks,
+//! spec violations the reader misses (`precheck`), missing, empty or short buffers, unreadable
+//! accessors, out-of-range vertex indices, positions that are non-finite or of magnitude
+//! [`MAX_COORDINATE`] or more, and lights whose radiance overflows f32 are errors
+//! ([`SceneError`]). So are a node graph that is not a tree and a scene over [`LoadBudget`]:
+//! both are checked from the JSON before the scene is expanded (`graph`, `budget`), so memory
+//! stays proportional to the file and to the scene; sparse accessors stay sparse
+//! (`accessor`), and images no material uses are not read (`images`).
+//!
+//! Files: every file opened (the scene, buffers, images) must be a regular file, checked
+//! before it is opened (a FIFO would block, a device never end; see [`crate::open_regular`]);
+//! a buffer is read up to its `byteLength` and no further. External URIs must stay inside the
+//! scene file's directory unless [`LoadOptions::allow_outside_paths`] is set (`uri`).
+//!
 //! Zero-area triangles are skipped and counted in one warning. Unsupported content
 //! (non-triangle modes, normal/occlusion maps, texture transforms, unusable lights, other
-//! extensions, undecodable images or ones whose header declares more texels than the budget
-//! has left, ...) is skipped with one warning per kind in
+//! extensions, missing or undecodable images or ones whose header declares more texels than
+//! the budget has left, ...) is skipped with one warning line per kind, with a count, in
 //! [`Scene::warnings`](crate::Scene::warnings), also printed once to stderr.
 
 mod accessor;
@@ -28,7 +38,7 @@ mod budget;
 mod glb;
 mod graph;
 mod guard;
-mod image_size;
+mod images;
 mod lights;
 mod material;
 mod precheck;
@@ -64,6 +74,10 @@ pub struct LoadOptions {
     pub quiet: bool,
     /// The most the scene may hold (counted before it is read).
     pub budget: LoadBudget,
+    /// Read buffer and image files outside the scene file's directory: absolute paths,
+    /// `file:` URIs, `..` that climbs out of it, symlinks whose target lies outside it. Off by
+    /// default, such a URI is an error ([`SceneError::OutsidePath`]).
+    pub allow_outside_paths: bool,
 }
 
 /// The scene `extras` key holding the environment radiance `[r, g, b]`.
@@ -74,12 +88,18 @@ pub const ENVIRONMENT_EXTRAS_KEY: &str = "blueshift_environment";
 /// the scene to rounding, and render a wrong image.
 pub const MAX_COORDINATE: f32 = 1e13;
 
+/// The largest scene file read (a GLB's length field is 32 bits).
+const MAX_SCENE_BYTES: u64 = u32::MAX as u64;
+
 /// Deepest node hierarchy accepted.
 const MAX_NODE_DEPTH: usize = 256;
 
 /// Shared state while walking one document.
 pub(crate) struct Ctx<'a> {
     pub path: &'a Path,
+    /// The scene directory, against which external URIs are resolved (`None`: from memory).
+    pub base: Option<&'a Path>,
+    pub allow_outside: bool,
     pub buffers: &'a [buffer::Data],
     pub warnings: Warnings,
     pub zero_area: usize,
@@ -90,7 +110,7 @@ pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene> {
         path: path.to_path_buf(),
         source,
     };
-    let meta = match std::fs::metadata(path) {
+    let bytes = match crate::read_regular(path, MAX_SCENE_BYTES) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             return Err(SceneError::NotFound {
                 path: path.to_path_buf(),
@@ -98,10 +118,6 @@ pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene> {
         }
         other => other.map_err(io)?,
     };
-    if !meta.is_file() {
-        return Err(io(std::io::Error::other("not a regular file")));
-    }
-    let bytes = std::fs::read(path).map_err(io)?;
     let base = path.parent().unwrap_or(Path::new("."));
     load_bytes(path, &bytes, Some(base), options)
 }
@@ -115,7 +131,7 @@ pub(crate) fn load_bytes(
     options: &LoadOptions,
 ) -> Result<Scene> {
     let path = name;
-    let mut scene = guard::catch_panics(path, || load_inner(path, bytes, base, &options.budget))?;
+    let mut scene = guard::catch_panics(path, || load_inner(path, bytes, base, options))?;
     match &options.environment {
         Some(EnvironmentSource::Constant(c)) => {
             scene.environment = *c;
@@ -139,8 +155,9 @@ fn load_inner(
     path: &Path,
     bytes: &[u8],
     base: Option<&Path>,
-    budget: &LoadBudget,
+    options: &LoadOptions,
 ) -> Result<Scene> {
+    let budget = &options.budget;
     let parse = |source| SceneError::Parse {
         path: path.to_path_buf(),
         source,
@@ -160,9 +177,11 @@ fn load_inner(
         return Err(parse(gltf::Error::Validation(problems)));
     }
     let document = gltf::Document::from_json(document.into_json()).map_err(parse)?;
-    let buffers = load_buffers(path, &document, base, blob)?;
+    let buffers = load_buffers(path, &document, base, blob, options.allow_outside_paths)?;
     let mut ctx = Ctx {
         path,
+        base,
+        allow_outside: options.allow_outside_paths,
         buffers: &buffers,
         warnings: Warnings::default(),
         zero_area: 0,
@@ -185,7 +204,7 @@ fn load_inner(
     let nodes = graph::check(path, &document, &gltf_scene, MAX_NODE_DEPTH)?;
     budget::count(path, &document, &nodes, budget)?;
 
-    let (images, image_map) = material::load_images(&document, base, budget.texels, &mut ctx);
+    let (images, image_map) = images::load(&document, budget.texels, &mut ctx)?;
     let all_textures = material::load_textures(&document, &image_map);
     let mut textures = Vec::new();
     let mut materials =
@@ -297,12 +316,14 @@ fn compact_images(images: Vec<Image>, textures: &mut [Texture]) -> Vec<Image> {
     kept
 }
 
-/// Loads every buffer, naming the one that fails.
+/// Loads every buffer, naming the one that fails. A buffer declaring `byteLength` N gets its
+/// first N bytes: a longer file is not read further, a shorter (or empty) one is an error.
 fn load_buffers(
     path: &Path,
     document: &gltf::Document,
     base: Option<&Path>,
     mut blob: Option<Vec<u8>>,
+    allow_outside: bool,
 ) -> Result<Vec<buffer::Data>> {
     let mut out = Vec::new();
     for b in document.buffers() {
@@ -317,19 +338,45 @@ fn load_buffers(
             uri: uri.clone(),
             problem,
         };
-        if let buffer::Source::Uri(u) = b.source() {
-            uri::check(u, base).map_err(|e| err(format!("cannot load: {e}")))?;
+        let length = b.length();
+        let short =
+            |got: usize, what: &str| err(crate::files::short_of(got as u64, length as u64, what));
+        let mut data = match b.source() {
+            buffer::Source::Bin => match blob.take() {
+                Some(bin) if bin.len() < length => {
+                    return Err(short(bin.len(), "the GLB BIN chunk"));
+                }
+                Some(bin) => bin,
+                None => return Err(err("it has no uri, and no GLB BIN chunk holds it".into())),
+            },
+            buffer::Source::Uri(u) => match uri::locate(u, base, allow_outside) {
+                Ok(None) => {
+                    let data = buffer::Data::from_source(b.source(), base)
+                        .map_err(|e| err(format!("cannot load: {e}")))?;
+                    if data.len() < length {
+                        return Err(short(data.len(), "the data URI"));
+                    }
+                    data.0
+                }
+                Ok(Some(file)) => crate::files::read_prefix(&file, length as u64)
+                    .map_err(|e| err(format!("cannot load: {}: {e}", file.display())))?,
+                Err(uri::Refused::Outside { dir, reason }) => {
+                    return Err(SceneError::OutsidePath {
+                        path: path.to_path_buf(),
+                        what: format!("buffer {}", b.index()),
+                        uri,
+                        dir,
+                        reason,
+                    });
+                }
+                Err(uri::Refused::Other(e)) => return Err(err(format!("cannot load: {e}"))),
+            },
+        };
+        // As the reader pads them.
+        while data.len() % 4 != 0 {
+            data.push(0);
         }
-        let data = buffer::Data::from_source_and_blob(b.source(), base, &mut blob)
-            .map_err(|e| err(format!("cannot load: {e}")))?;
-        if data.len() < b.length() {
-            return Err(err(format!(
-                "has {} bytes but the file declares byteLength {}",
-                data.len(),
-                b.length()
-            )));
-        }
-        out.push(data);
+        out.push(buffer::Data(data));
     }
     Ok(out)
 }
