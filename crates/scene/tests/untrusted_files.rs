@@ -566,3 +566,31 @@ fn many_unsupported_extensions_are_one_warning_line() {
         ]
     );
 }
+
+#[test]
+fn truncated_and_oversized_image_files_are_named() {
+    let dir = tmp();
+    let png = common::solid_png(64, [1, 2, 3, 255]);
+    // Cut after the header: the size reads, the texels do not.
+    std::fs::write(dir.path().join("cut.png"), &png[..60]).expect("write");
+    // A 1 x 1 image followed by 2 MiB: more than any 1 x 1 image needs, refused unread.
+    let mut big = common::solid_png(1, [1, 2, 3, 255]);
+    big.resize(2 << 20, 0);
+    std::fs::write(dir.path().join("big.png"), &big).expect("write");
+    for (name, want) in [
+        (
+            "cut.png",
+            "the image data is truncated (unexpected end of file)",
+        ),
+        (
+            "big.png",
+            "the file has 2097152 bytes, more than an image of its declared size needs",
+        ),
+    ] {
+        let p = write_json(dir.path(), "img.gltf", &textured_quad(name));
+        let s = load(&p).expect("loads without the image");
+        assert!(s.images.is_empty(), "{name}");
+        assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+        assert_contains(&s.warnings[0], &["image 0 cannot be used (", want]);
+    }
+}
