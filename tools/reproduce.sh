@@ -18,7 +18,7 @@
 #                                         leaves docs/ untouched
 #
 # The motion run's headline table (per frame / accumulated along the motion) also replaces
-# README.md's results table, and the best preset per configuration its "which method to
+# README.md's results table, and the best named method per configuration its "which method to
 # pick". Eval outputs go to out/results/NAME/ (report.md, report.json, PNGs). Nothing is left
 # half-written: each run goes to a staging directory that replaces the old one only when it
 # succeeds, and docs files are written to a temporary file and then renamed.
@@ -125,21 +125,17 @@ tmpfiles=()
 cleanup() { ((${#tmpfiles[@]})) && rm -rf "${tmpfiles[@]}"; return 0; }
 trap cleanup EXIT
 
-# Pivot tables of one report.md: for each column named in COLS (the first table of each
-# configuration, or with "2:" its second, the accumulation along the motion), a table with one
-# row per method and one column per configuration.
+# What each configuration's tables in one report.md add to the headline table, in a few lines
+# (the headline's ratios are not repeated): the run's line; per configuration, the largest
+# standard error over sequences of any method's two headline ratios (per frame: the first
+# table's "P1 emitter-free"; accumulated: the second's "TAA P1"); the lowest per-frame P8 (a
+# denoiser's scale); and the range of the RMSE ratios, a check (a permutation only moves
+# error). Each method's own standard errors, FLIP, P2, LF, EMA and P4 stay in report.md.
 tables() { # report.md
   awk '
-    BEGIN {
-      FS = " *[|] *"
-      ncol = split("1:P1 emitter-free|2:TAA P1|2:TAA FLIP|2:P8|2:TAA P8|1:RMSE", cols, "|")
-      title["1:P1 emitter-free"] = "P1 ratio to `white` per frame on emitter-free pixels (frames in the metrics window; ± standard error over sequences)"
-      title["2:TAA P1"] = "TAA P1 ratio to `white` on emitter-free pixels: the accumulation that follows the motion (alpha 0.1; the EMA for a still camera)"
-      title["2:TAA FLIP"] = "FLIP of the TAA image at the last frame, emitter-free pixels, absolute: lower is better"
-      title["2:P8"] = "P8 ratio to `white` per frame (sigma 8 px, a denoiser'"'"'s scale; pixels more than 24 px from a visible light)"
-      title["2:TAA P8"] = "TAA P8 ratio to `white`: the same on the TAA image"
-      title["1:RMSE"] = "RMSE ratio to `white`, all pixels (the permutation only moves error: should stay within 3%)"
-    }
+    BEGIN { FS = " *[|] *"; ncol = split("1:P1 emitter-free|2:TAA P1|2:P8|1:RMSE", cols, "|") }
+    # The standard error of a "ratio ± error" cell; "" for a bare ratio.
+    function se(x) { return sub(/.*± */, "", x) ? x : "" }
     NR == 3 { info = $0; sub(/; commit [^;]*;/, ";", info) }
     /^## Per frame/ { skip = 1; next }
     /^## / { skip = 0; cfg = substr($0, 4); ncfg++; cfgs[ncfg] = cfg; tbl = 0; next }
@@ -154,22 +150,27 @@ tables() { # report.md
     END {
       if (nm == 0) { print "reproduce: no tables in the report" > "/dev/stderr"; exit 1 }
       print "Run: " info
-      for (c = 1; c <= ncol; c++) {
-        print ""
-        print "**" title[cols[c]] "**"
-        print ""
-        line = "| method |"; rule = "|---|"
-        for (k = 1; k <= ncfg; k++) { line = line " " cfgs[k] " |"; rule = rule "---|" }
-        print line; print rule
+      ses = ""; p8 = ""; lo = ""; hi = ""
+      for (k = 1; k <= ncfg; k++) {
+        c = cfgs[k]; f = ""; a = ""; b = ""
         for (i = 1; i <= nm; i++) {
-          line = "| " ms[i] " |"
-          for (k = 1; k <= ncfg; k++) {
-            x = v[cols[c], ms[i], cfgs[k]]
-            line = line " " (x == "" ? "-" : x) " |"
-          }
-          print line
+          m = ms[i]
+          if (m == "white") continue
+          x = se(v["1:P1 emitter-free", m, c]); if (x != "" && (f == "" || x + 0 > f + 0)) f = x
+          x = se(v["2:TAA P1", m, c]); if (x != "" && (a == "" || x + 0 > a + 0)) a = x
+          x = v["2:P8", m, c]; if (x != "" && (b == "" || x + 0 < bx + 0)) { b = m; bx = x }
+          x = v["1:RMSE", m, c]
+          if (x == "") continue
+          if (lo == "" || x + 0 < lo + 0) { lo = x; lo_at = "`" m "`, " c }
+          if (hi == "" || x + 0 > hi + 0) { hi = x; hi_at = "`" m "`, " c }
         }
+        if (f != "" || a != "") ses = ses (ses == "" ? "" : "; ") c " " (f == "" ? "-" : f) " / " (a == "" ? "-" : a)
+        if (b != "") p8 = p8 (p8 == "" ? "" : "; ") c " `" b "` " bx
       }
+      if (ses != "" || p8 != "" || lo != "") print ""
+      if (ses != "") print "- Largest standard error over sequences of any ratio above (per frame / accumulated): " ses "."
+      if (p8 != "") print "- Lowest P8 ratio to `white` per frame (sigma 8 px, a denoiser'"'"'s scale; pixels more than 24 px from a visible light): " p8 "."
+      if (lo != "") print "- RMSE ratio to `white`, all pixels (a permutation only moves error: it should stay within 3%): " lo " (" lo_at ") to " hi " (" hi_at ")."
     }' "$1"
 }
 
@@ -180,8 +181,9 @@ headline() { # report.md
 }
 
 # From a headline table (stdin): per configuration and for the geometric mean over them, the
-# preset with the lowest per-frame and the lowest accumulated ratio (spelled-out experiment
-# forms and `white` left out), and the default's own figures.
+# named method (preset or comparison baseline) with the lowest per-frame and the lowest
+# accumulated ratio (spelled-out experiment forms and `white` left out), and the default's own
+# figures.
 picks() {
   awk -v default_method=sort-cycle '
     BEGIN { FS = " *[|] *" }

@@ -154,7 +154,7 @@ fn every_pass_a_method_adds_counts_in_its_overhead() {
     let gpu = Gpu::new();
     let (scene, assets) = cornell();
     let common = ["trace", "accumulate", "tonemap"];
-    for (name, m) in Method::PRESETS {
+    for (name, m) in Method::named() {
         if m == Method::Fast && assets.fast.is_empty() {
             continue;
         }

@@ -79,6 +79,7 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
             };
             let variant = SortVariant {
                 cycle: true,
+                sample_keys: cp.sample_keys != 0,
                 large: SortVariant::large_for(sp.block),
                 ..SortVariant::PAPER
             };

@@ -20,7 +20,7 @@ fn the_working_set_is_device_local() {
     let gpu = Gpu::new();
     let scene = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
-    for (name, method) in Method::PRESETS {
+    for (name, method) in Method::named() {
         if method == Method::Fast && assets.fast.is_empty() {
             continue;
         }

@@ -76,6 +76,6 @@ fn sort_retarget_from_hbo19_seeds_starts_at_tile_positions_and_stays_a_permutati
     }
     assert_ne!(r.read_seeds().unwrap(), init, "seeds never moved");
     // Switching to spp 4 picks another table of the same tile (seeds stay valid).
-    r.set_quality(4, 1, 4).unwrap();
+    r.set_quality(4, 1, Some(4)).unwrap();
     r.render_frame().unwrap();
 }

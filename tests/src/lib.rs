@@ -21,6 +21,8 @@ mod bvh;
 #[cfg(test)]
 mod cycle;
 #[cfg(test)]
+mod default_quality;
+#[cfg(test)]
 mod demod;
 #[cfg(test)]
 mod follow;
@@ -46,6 +48,8 @@ mod mask_shift;
 mod motion;
 #[cfg(test)]
 mod permute;
+#[cfg(test)]
+mod recipes;
 #[cfg(test)]
 mod rng;
 #[cfg(test)]

@@ -357,7 +357,7 @@ fn still_camera_reprojection_is_the_identity() {
         let cfg = RenderConfig {
             bounces: 1,
             method,
-            block: 4,
+            block: Some(4),
             ..RenderConfig::new(45, 38)
         };
         let mut r = Renderer::new(gpu.dev(), &scene, &assets, cfg).unwrap();

@@ -386,12 +386,13 @@ fn every_sort_variant_matches_cpu() {
         ];
     }
     let mut checked = 0;
-    for (i, (v, keys)) in SortVariant::shaders().into_iter().enumerate() {
+    for (i, v) in SortVariant::all().into_iter().enumerate() {
+        let keys = v.sample_keys;
         let cp = CycleParams {
             sample_keys: u32::from(keys),
             ..cp
         };
-        let name = v.shader_for(keys);
+        let name = v.shader();
         // The largest block of each slot count: 8x8 (64 slots) or 4x4 (16).
         let block = if v.large { 8 } else { 4 };
         let p = SortParams {

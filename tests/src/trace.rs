@@ -200,7 +200,7 @@ fn renderer_seeds_stay_a_permutation() {
     let dir = default_assets_dir().join("scenes/cornell-box.gltf");
     let s = Scene::load(dir).unwrap();
     let extended = "sort-retarget:motion=reproject,grouping=surfaces,key=demod";
-    let presets = Method::PRESETS.into_iter().map(|(_, m)| m);
+    let presets = Method::named().map(|(_, m)| m);
     for method in presets
         .chain([extended.parse().unwrap()])
         .filter(|m| m.sorts())
@@ -208,7 +208,7 @@ fn renderer_seeds_stay_a_permutation() {
         let cfg = RenderConfig {
             bounces: 1,
             method,
-            block: 3,
+            block: Some(3).filter(|_| method.fixed_block().is_none()),
             ..RenderConfig::new(70, 45)
         };
         let mut r = Renderer::new(gpu.dev(), &s, &assets(), cfg).unwrap();
@@ -310,7 +310,7 @@ fn blocknet_preset_is_sobol_with_the_block_net_sampler() {
             })
             .collect::<Vec<_>>()
     };
-    let preset = render("blocknet".parse().unwrap(), None);
+    let preset = render(Method::parse_comparison("blocknet").unwrap(), None);
     let spelled = render(Method::Sobol, Some(blueshift_sampling::Sampler::BlockNet));
     let sobol = render(Method::Sobol, None);
     for (f, (a, b)) in preset.iter().zip(&spelled).enumerate() {

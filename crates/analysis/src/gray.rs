@@ -114,18 +114,6 @@ impl Gray {
             Gray::new(w, h, l.into_raw())
         }
     }
-
-    /// Writes an 8-bit grayscale PNG of `clamp(v, 0, 1) * 255`, atomically.
-    pub fn save_png8(&self, path: &Path) -> Result<()> {
-        let bytes: Vec<u8> = self
-            .data
-            .iter()
-            .map(|&v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
-            .collect();
-        let img = image::GrayImage::from_raw(self.w as u32, self.h as u32, bytes)
-            .ok_or_else(|| Error::Invalid("image buffer size".into()))?;
-        save_image(&image::DynamicImage::ImageLuma8(img), path)
-    }
 }
 
 impl From<&blueshift_assets::Mask> for Gray {
@@ -137,7 +125,7 @@ impl From<&blueshift_assets::Mask> for Gray {
     }
 }
 
-/// Encodes `img` as PNG in memory and writes it with [`write_atomic`].
+/// Encodes `img` as PNG in memory and writes it with [`blueshift_assets::write_atomic`].
 pub(crate) fn save_image(img: &image::DynamicImage, path: &Path) -> Result<()> {
     let mut buf = std::io::Cursor::new(Vec::new());
     img.write_to(&mut buf, image::ImageFormat::Png)
@@ -145,14 +133,7 @@ pub(crate) fn save_image(img: &image::DynamicImage, path: &Path) -> Result<()> {
             path: path.to_path_buf(),
             source,
         })?;
-    write_atomic(path, buf.get_ref())
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same directory and a rename, so a
-/// failure never leaves a half-written output (`blueshift_assets::write_atomic`, with this
-/// crate's error). The parent directory must exist.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    blueshift_assets::write_atomic(path, bytes).map_err(|e| match e {
+    blueshift_assets::write_atomic(path, buf.get_ref()).map_err(|e| match e {
         blueshift_assets::AssetError::Io { path, source } => Error::Io { path, source },
         other => Error::Invalid(other.to_string()),
     })
@@ -186,7 +167,9 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("g.png");
         let g = Gray::from_fn(5, 3, |x, y| (x + 5 * y) as f32 / 14.0);
-        g.save_png8(&p).unwrap();
+        let bytes = g.data.iter().map(|v| (v * 255.0).round() as u8).collect();
+        let img = image::GrayImage::from_raw(5, 3, bytes).unwrap();
+        save_image(&image::DynamicImage::ImageLuma8(img), &p).unwrap();
         let back = Gray::load(&p).unwrap();
         assert_eq!((back.w, back.h), (5, 3));
         for (a, b) in g.data.iter().zip(&back.data) {

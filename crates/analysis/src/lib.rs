@@ -24,7 +24,7 @@ mod spectrum;
 pub use blueshift_assets as assets;
 pub use blur::{Boundary, blurred_rmse, gaussian_blur, gaussian_kernel, rmse};
 pub use error::{Error, Result};
-pub use gray::{Gray, luminance, write_atomic};
+pub use gray::{Gray, luminance};
 pub use plot::{RadialSeries, plot_radial_profiles, save_spectrum_png, spectrum_to_image};
 pub use radial::{LF_CUTOFF, RadialProfile, low_frequency_fraction, radial_profile};
 pub use spectrum::{Spectrum, SpectrumAccumulator, Window, periodogram, power_spectrum};

@@ -65,12 +65,21 @@ impl<T: Clone + Send + Sync + 'static> TypedValueParser for Named<T> {
     }
 }
 
-/// A method preset or a spelled-out permutation (`sort:field=value,...`).
+/// A method preset or a spelled-out permutation (`sort-retarget:field=value,...`).
 pub fn method_parser() -> Named<Method> {
     Named {
         what: "method",
         table: || Method::PRESETS.to_vec(),
         parse: Some(|s| s.parse()),
+    }
+}
+
+/// What `eval` and `bench` compare: [`method_parser`]'s methods and the comparison baselines.
+pub fn comparison_parser() -> Named<Method> {
+    Named {
+        what: "method",
+        table: || [Method::PRESETS, Method::COMPARISONS].concat(),
+        parse: Some(Method::parse_comparison),
     }
 }
 
@@ -113,7 +122,7 @@ pub fn preset_name(m: Method) -> &'static str {
 pub fn method_help() -> String {
     format!(
         "A preset, or a spelled-out permutation PRESET:field=value,... (e.g. \
-         sort:transport=grid,key=demod) with {}",
+         sort-retarget:transport=none, the paper's sort alone) with {}",
         Method::fields_syntax()
     )
 }
@@ -154,9 +163,10 @@ pub struct SceneArgs {
     /// Directory with masks and retarget tables.
     #[arg(long)]
     pub assets: Option<PathBuf>,
-    /// Sorting block edge (2..=8).
-    #[arg(long, default_value_t = 4)]
-    pub block: u32,
+    /// Sorting block edge (2..=8) of sort-retarget and its spelled-out forms [default: 4];
+    /// sort-cycle and sort-grid-adaptive sort 8x8 blocks of their own.
+    #[arg(long)]
+    pub block: Option<u32>,
     #[arg(long, value_parser = sampler_parser(), help = sampler_help())]
     pub sampler: Option<Sampler>,
     /// Frame-0 seed map of sort / sort-retarget: random, or hbo19 (HBO+19 tile positions with
@@ -223,7 +233,7 @@ impl SceneArgs {
 pub struct MethodArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    #[arg(long, default_value_t = Method::SORT_CYCLE, value_parser = method_parser(),
+    #[arg(long, default_value_t = Method::DEFAULT, value_parser = method_parser(),
           help = method_help())]
     pub method: Method,
     #[arg(long, default_value_t = 256)]

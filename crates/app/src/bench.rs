@@ -1,7 +1,7 @@
 //! `blueshift bench`: throughput of the path-tracing pass from GPU timestamps (on lavapipe,
 //! CPU time per pass), as Msamples/s; plus primary-ray Mrays/s with `--bounces 0`.
 use crate::GpuOpts;
-use crate::args::{MethodArgs, preset_name};
+use crate::args::{MethodArgs, comparison_parser, preset_name};
 use anyhow::{Result, bail};
 use blueshift_render::{
     CameraPath, LLVMPIPE_LOOP_LIMIT, LoopStats, Method, RenderConfig, Renderer, TraceLoop,
@@ -9,7 +9,8 @@ use blueshift_render::{
 
 /// `bench`'s flags.
 #[derive(clap::Args, Debug)]
-#[command(mut_arg("method", |a| a.default_value(preset_name(Method::White))))]
+#[command(mut_arg("method", |a| a.default_value(preset_name(Method::White))
+    .value_parser(comparison_parser())))]
 pub struct BenchArgs {
     #[command(flatten)]
     pub method: MethodArgs,

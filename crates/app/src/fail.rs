@@ -39,9 +39,10 @@ pub fn install_panic_hook() {
 /// Runs `f`, mapping `Err` to `error: ...` + exit 1 and a panic to exit 2.
 pub fn run(f: impl FnOnce() -> anyhow::Result<()>) -> ExitCode {
     let f = || {
-        // Test hook: proves a panic becomes an internal error (crates/app/tests/errors.rs).
-        if std::env::var_os("BLUESHIFT_TEST_PANIC").is_some() {
-            panic!("BLUESHIFT_TEST_PANIC is set");
+        // Fault hook: proves a panic becomes an internal error (crates/app/tests/errors.rs).
+        use blueshift_device::faults;
+        if faults::var(faults::PANIC).is_some() {
+            panic!("{} is set", faults::PANIC);
         }
         f()
     };

@@ -1,31 +1,11 @@
 //! Atomic image output: write to a temporary file in the same directory, then rename, so a
 //! failed or interrupted run never leaves a half-written file under the final name.
 use anyhow::{Context, Result};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Writes `bytes` to `path` atomically.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .context("output path has no file name")?
-        .to_string_lossy();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = (|| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.with_context(|| format!("writing {}", path.display()))
-}
+/// The one atomic writer of the workspace (temporary file in the same directory, then
+/// rename).
+pub use blueshift_assets::write_atomic;
 
 /// Encodes RGBA8 pixels as PNG (in memory).
 pub fn png_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<Vec<u8>> {
@@ -71,23 +51,4 @@ pub fn prepare_dir(dir: &Path) -> Result<OutputDir> {
         .with_context(|| format!("output directory {} is not writable", dir.display()))?;
     let _ = std::fs::remove_file(probe);
     Ok(guard)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn atomic_write_leaves_no_temp_file() {
-        let dir = std::env::temp_dir().join(format!("bs-out-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        write_atomic(&dir.join("a.bin"), b"hello").unwrap();
-        let names: Vec<_> = std::fs::read_dir(&dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        assert_eq!(names, vec![std::ffi::OsString::from("a.bin")]);
-        assert!(write_atomic(&dir.join("missing/b.bin"), b"x").is_err());
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
 }

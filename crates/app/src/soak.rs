@@ -99,7 +99,7 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
             .collect();
         bail!(
             "soak checks the seed permutation: --method must permute seeds ({} or a spelled-out \
-             sort:...), not {}",
+             PRESET:field=value form of them), not {}",
             permuting.join(", "),
             cfg.method
         );
@@ -126,7 +126,7 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
         path.label(),
         cfg.spp,
         cfg.bounces,
-        cfg.block,
+        cfg.effective_block(),
         dev.info().name,
         a.check_every
     );

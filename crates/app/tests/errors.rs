@@ -78,8 +78,13 @@ fn fast_without_its_mask_names_the_tool() {
         std::fs::copy(src.join(f), &to).expect("copy asset");
     }
     let a = dir.to_str().expect("utf-8");
-    let o = c.render(&["--assets", a, "--method", "fast"], &[]);
+    // `fast` is a comparison baseline: bench takes it, render does not.
+    let mut args = vec!["bench", "--assets", a, "--method", "fast"];
+    args.extend(TINY);
+    let o = c.run(&args, &[]);
     c.expect_error(&o, &["no FAST mask", "blueshift-tools fast"]);
+    let o = c.render(&["--assets", a, "--method", "fast"], &[]);
+    c.expect_error(&o, &["unknown method 'fast'", "presets: white"]);
 }
 
 #[test]

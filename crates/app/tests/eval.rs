@@ -2,6 +2,7 @@
 //! configured run is present, and its numbers match a recomputation from the saved frames.
 use blueshift_analysis::{Boundary, Gray, blurred_rmse, rmse};
 use std::path::Path;
+mod common;
 use std::process::Command;
 
 fn lum(path: &Path) -> Gray {
@@ -12,7 +13,7 @@ fn lum(path: &Path) -> Gray {
 fn tiny_eval_report_matches_recomputation_from_saved_frames() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("report");
-    let status = Command::new(env!("CARGO_BIN_EXE_blueshift"))
+    let status = common::clean(Command::new(common::BIN))
         .args([
             "--validation",
             "eval",

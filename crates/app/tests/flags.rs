@@ -41,8 +41,8 @@ fn other_bad_arguments_are_errors_not_panics() {
     let c = Case::new();
     let o = c.render(&["--method", "nope"], &[]);
     c.expect_error(&o, &["unknown method 'nope'", "sort-retarget"]);
-    let o = c.render(&["--method", "sort:key=history"], &[]);
-    c.expect_error(&o, &["sort:key=history", "needs motion=reproject"]);
+    let o = c.render(&["--method", "sort-retarget:key=history"], &[]);
+    c.expect_error(&o, &["sort-retarget:key=history", "needs motion=reproject"]);
     let o = c.render(&["--sampler", "nope"], &[]);
     c.expect_error(&o, &["unknown sampler 'nope'"]);
     let o = c.render_sized(("8", "8"), "0", &[], &[]);

@@ -3,10 +3,11 @@
 //! with the defaults.
 use blueshift_render::Method;
 use blueshift_sampling::Sampler;
+mod common;
 use std::process::Command;
 
 fn help(command: &str) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_blueshift"))
+    let o = common::clean(Command::new(common::BIN))
         .args([command, "--help"])
         .output()
         .expect("run blueshift");

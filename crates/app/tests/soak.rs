@@ -1,17 +1,16 @@
 //! A 500-frame soak of the frame loop (the `blueshift soak` command at a tiny size): the seed
 //! buffer stays a permutation and host/device memory stay flat; the figures are printed. And
 //! short soaks with a moving camera, whose checks also read back the method's history.
+mod common;
 use std::process::{Command, Output};
 
 fn soak(args: &[&str]) -> Output {
     let dir = tempfile::tempdir().expect("tempdir");
-    Command::new(env!("CARGO_BIN_EXE_blueshift"))
+    common::clean(Command::new(common::BIN))
         .arg("soak")
         .args(args)
         .args(["--width", "24", "--height", "20", "--bounces", "1"])
         .env("XDG_RUNTIME_DIR", dir.path())
-        .env_remove("BLUESHIFT_TEST_DEVICE_LOST")
-        .env_remove("BLUESHIFT_MAX_STORAGE_BUFFER_RANGE")
         .output()
         .expect("run blueshift soak")
 }

@@ -3,6 +3,7 @@
 //! number, via `-displayfd`) and stops it at the end, even when the test fails.
 use std::io::{BufRead, BufReader};
 use std::path::Path;
+mod common;
 use std::process::{Child, Command, Output, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
@@ -81,7 +82,7 @@ fn display() -> (String, Option<Xvfb>) {
 
 /// Runs the binary with `args`, killing it after `timeout`.
 fn blueshift(args: &[&str], display: &str, dir: &Path, timeout: Duration) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_blueshift"))
+    let mut child = common::clean(Command::new(common::BIN))
         .args(args)
         .env("DISPLAY", display)
         .env("XDG_RUNTIME_DIR", dir)

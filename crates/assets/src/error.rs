@@ -74,7 +74,32 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
             .set_permissions(std::fs::Permissions::from_mode(0o644))
             .map_err(|e| AssetError::io(path, e))?;
     }
+    // On disk before the rename, so a crash leaves the old file or the new one, never part.
+    tmp.as_file()
+        .sync_all()
+        .map_err(|e| AssetError::io(path, e))?;
     tmp.persist(path)
         .map_err(|e| AssetError::io(path, e.error))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn atomic_write_leaves_no_temp_file() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        write_atomic(&dir.path().join("a.bin"), b"hello").expect("write");
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .expect("read dir")
+            .map(|e| e.expect("entry").file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("a.bin")]);
+        assert_eq!(
+            std::fs::read(dir.path().join("a.bin")).expect("read"),
+            b"hello"
+        );
+        assert!(write_atomic(&dir.path().join("missing/b.bin"), b"x").is_err());
+    }
 }

@@ -53,10 +53,10 @@ pub struct Recorder {
     pub(crate) passes: Vec<String>,
     pub(crate) open_pass: Option<usize>,
     pub(crate) recording: bool,
-    /// Testing hook (`BLUESHIFT_TEST_DEVICE_LOST=PASS`): a submission containing pass PASS
+    /// Fault hook ([`crate::faults::DEVICE_LOST`]`=PASS`): a submission containing pass PASS
     /// reports a lost device, as if the GPU hung in PASS (markers stop after it).
     pub(crate) lose_in_pass: Option<String>,
-    /// Testing hook (`BLUESHIFT_TEST_SUBMIT_OOM=PASS`): a submission containing pass PASS
+    /// Fault hook ([`crate::faults::SUBMIT_OOM`]`=PASS`): a submission containing pass PASS
     /// reports running out of device memory, through the same error path as the driver's.
     pub(crate) oom_in_pass: Option<String>,
     /// The hook's pass was recorded in this submission; later passes write no marker.
@@ -130,12 +130,8 @@ impl Recorder {
                 passes: Vec::new(),
                 open_pass: None,
                 recording: false,
-                lose_in_pass: std::env::var("BLUESHIFT_TEST_DEVICE_LOST")
-                    .ok()
-                    .filter(|p| !p.is_empty()),
-                oom_in_pass: std::env::var("BLUESHIFT_TEST_SUBMIT_OOM")
-                    .ok()
-                    .filter(|p| !p.is_empty()),
+                lose_in_pass: crate::faults::var(crate::faults::DEVICE_LOST),
+                oom_in_pass: crate::faults::var(crate::faults::SUBMIT_OOM),
                 markers_frozen: false,
                 written: HashSet::new(),
                 read: HashSet::new(),

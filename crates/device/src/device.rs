@@ -28,7 +28,7 @@ pub struct DeviceInfo {
     pub max_storage_buffer_range: u64,
     pub max_memory_allocation_size: u64,
     /// Bytes Blueshift may allocate in all: the largest memory heap (lavapipe: system RAM), or
-    /// less with `BLUESHIFT_MEMORY_BUDGET`. Checked before every allocation so running out is
+    /// less with the fault hook [`crate::faults::MEMORY_BUDGET`]. Checked before every allocation so running out is
     /// an error naming the resource rather than a driver abort or the OOM killer.
     pub memory_budget: u64,
     pub max_compute_work_group_invocations: u32,
@@ -175,10 +175,10 @@ impl Device {
     ) -> Result<Self> {
         let raw_inst = instance.raw();
         let mut info = query_info(instance, pd);
-        if let Some(limit) = env_limit("BLUESHIFT_MAX_STORAGE_BUFFER_RANGE")? {
+        if let Some(limit) = env_limit(crate::faults::MAX_STORAGE_BUFFER_RANGE)? {
             info.max_storage_buffer_range = info.max_storage_buffer_range.min(limit);
         }
-        if let Some(limit) = env_limit("BLUESHIFT_MEMORY_BUDGET")? {
+        if let Some(limit) = env_limit(crate::faults::MEMORY_BUDGET)? {
             info.memory_budget = info.memory_budget.min(limit);
         }
         // SAFETY: plain query on a handle from the enumeration.
@@ -320,9 +320,9 @@ impl Device {
 /// A testing hook: an environment variable that lowers a device limit (so over-limit paths can
 /// be tested without huge inputs). Unset = no change.
 fn env_limit(var: &str) -> Result<Option<u64>> {
-    match std::env::var(var) {
-        Err(_) => Ok(None),
-        Ok(v) => v
+    match crate::faults::var(var) {
+        None => Ok(None),
+        Some(v) => v
             .trim()
             .parse::<u64>()
             .map(Some)

@@ -14,6 +14,7 @@
 mod commands;
 mod device;
 mod error;
+pub mod faults;
 mod instance;
 mod memory;
 mod pipeline;

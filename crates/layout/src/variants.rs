@@ -149,6 +149,11 @@ pub struct SortVariant {
     /// Run sort-cycle's point cycle on the way in (`cycle_history` and `accum` bindings,
     /// `SortParams::cycle_*`): the point cycle fused into the sort.
     pub cycle: bool,
+    /// With `cycle`: the seeds rank by their next light sample
+    /// (`SortParams::cycle_sample_keys`, a moving view), which binds no shading-edge flags. A
+    /// shader of its own rather than a run-time branch: llvmpipe runs both sides of a uniform
+    /// branch, so a still view would pay for keys it never uses.
+    pub sample_keys: bool,
 }
 
 impl SortVariant {
@@ -161,6 +166,7 @@ impl SortVariant {
         large: false,
         retarget: false,
         cycle: false,
+        sample_keys: false,
     };
 
     /// `permute/sort_seeds` for the paper (blocks up to 4x4), else with a suffix per
@@ -168,7 +174,7 @@ impl SortVariant {
     pub fn shader(self) -> String {
         let flag = |on: bool, suffix: &'static str| if on { suffix } else { "" };
         format!(
-            "permute/sort_seeds{}{}{}{}{}{}{}",
+            "permute/sort_seeds{}{}{}{}{}{}{}{}",
             flag(self.classes, "_classes"),
             flag(self.history, "_history"),
             flag(self.pairs, "_pairs"),
@@ -176,6 +182,7 @@ impl SortVariant {
             flag(self.large, "_64"),
             flag(self.retarget, "_retarget"),
             flag(self.cycle, "_cycle"),
+            flag(self.sample_keys, "_samplekeys"),
         )
     }
 
@@ -184,22 +191,10 @@ impl SortVariant {
         block > 4
     }
 
-    /// The shader the sorting pass runs for this variant: `shader()`, or with `sample_keys`
-    /// (sort-cycle ranking by the next light sample, `SortParams::cycle_sample_keys`, only
-    /// with `cycle`) its specialisation that has them compiled in. Two shaders rather than a
-    /// run-time branch: llvmpipe runs both sides of a uniform branch, so a still view would
-    /// pay for keys it never uses.
-    pub fn shader_for(self, sample_keys: bool) -> String {
-        match sample_keys && self.cycle {
-            true => format!("{}_samplekeys", self.shader()),
-            false => self.shader(),
-        }
-    }
-
-    fn variant(self, sample_keys: bool) -> ShaderVariant {
+    fn variant(self) -> ShaderVariant {
         let bit = |on: bool| u32::from(on).to_string();
         ShaderVariant {
-            name: self.shader_for(sample_keys),
+            name: self.shader(),
             body: "permute/sort_seeds.glsl",
             defines: vec![
                 ("SORT_CLASSES", bit(self.classes)),
@@ -212,15 +207,16 @@ impl SortVariant {
                 ),
                 ("SORT_RETARGET", bit(self.retarget)),
                 ("SORT_CYCLE", bit(self.cycle)),
-                ("SORT_SAMPLE_KEYS", bit(sample_keys && self.cycle)),
+                ("SORT_SAMPLE_KEYS", bit(self.sample_keys)),
             ],
         }
     }
 
-    /// Every combination a method can ask for: 48 (retargeting and the point cycle never
-    /// meet pairs, skew counts or each other: pairs belong to the moving grid).
+    /// Every combination a method can ask for: 56 (retargeting and the point cycle never
+    /// meet pairs, skew counts or each other: pairs belong to the moving grid; sample keys
+    /// belong to the point cycle).
     pub fn all() -> Vec<SortVariant> {
-        (0..128u32)
+        (0..256u32)
             .map(|b| SortVariant {
                 classes: b & 1 != 0,
                 history: b & 2 != 0,
@@ -229,18 +225,11 @@ impl SortVariant {
                 large: b & 16 != 0,
                 retarget: b & 32 != 0,
                 cycle: b & 64 != 0,
+                sample_keys: b & 128 != 0,
             })
             .filter(|v| !((v.retarget || v.cycle) && (v.pairs || v.skew)))
             .filter(|v| !(v.retarget && v.cycle))
-            .collect()
-    }
-
-    /// Every compiled sorting shader as (variant, sample keys): each of `all()` without
-    /// sample keys, and the point cycle's with them too (`shader_for`).
-    pub fn shaders() -> Vec<(SortVariant, bool)> {
-        SortVariant::all()
-            .into_iter()
-            .flat_map(|v| std::iter::once((v, false)).chain(v.cycle.then_some((v, true))))
+            .filter(|v| v.cycle || !v.sample_keys)
             .collect()
     }
 }
@@ -248,9 +237,7 @@ impl SortVariant {
 /// Every generated shader variant, for the shaders crate's build script.
 pub fn shader_variants() -> Vec<ShaderVariant> {
     let trace = TraceVariant::all().into_iter().map(TraceVariant::variant);
-    let sort = SortVariant::shaders()
-        .into_iter()
-        .map(|(v, keys)| v.variant(keys));
+    let sort = SortVariant::all().into_iter().map(SortVariant::variant);
     trace.chain(sort).collect()
 }
 
@@ -276,12 +263,12 @@ mod tests {
         assert_eq!(counting.len(), 2);
         assert!(counting.iter().all(|v| v.canonical() == **v));
         assert_eq!(SortVariant::PAPER.shader(), "permute/sort_seeds");
-        // Sample keys specialise only the point cycle's shaders.
-        assert_eq!(SortVariant::PAPER.shader_for(true), "permute/sort_seeds");
-        let cycles = SortVariant::all().into_iter().filter(|v| v.cycle).count();
-        assert_eq!(
-            shader_variants().len(),
-            all.len() + SortVariant::all().len() + cycles
-        );
+        // Sample keys specialise only the point cycle's shaders: 48 sorting shaders without
+        // them, and the 8 of the point cycle with them.
+        let sorts = SortVariant::all();
+        let keys = sorts.iter().filter(|v| v.sample_keys).count();
+        assert!(sorts.iter().all(|v| v.cycle || !v.sample_keys));
+        assert_eq!((sorts.len(), keys), (56, 8));
+        assert_eq!(shader_variants().len(), all.len() + sorts.len());
     }
 }

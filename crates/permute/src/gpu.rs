@@ -83,7 +83,11 @@ impl<'a> SortInput<'a> {
         }
         for ((b, on), given) in SORT_OPTIONAL
             .iter()
-            .zip(optional_flags(v, false))
+            // The cycle's input always holds its flags; a sample-key shader leaves them unbound.
+            .zip(optional_flags(SortVariant {
+                sample_keys: false,
+                ..v
+            }))
             .zip(self.optional())
         {
             match (on, given.is_some()) {
@@ -96,10 +100,10 @@ impl<'a> SortInput<'a> {
     }
 }
 
-/// Whether `v` binds each of `SORT_OPTIONAL`; with `sample_keys` (a moving view, which marks
-/// no shading edges) the cycle's shader binds no flags.
-fn optional_flags(v: SortVariant, sample_keys: bool) -> [bool; 7] {
-    let flags = v.cycle && !sample_keys;
+/// Whether `v` binds each of `SORT_OPTIONAL`; with sample keys (a moving view, which marks no
+/// shading edges) the cycle's shader binds no flags.
+fn optional_flags(v: SortVariant) -> [bool; 7] {
+    let flags = v.cycle && !v.sample_keys;
     [
         v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle, flags,
     ]
@@ -127,8 +131,8 @@ const SORT_OPTIONAL: [Binding; 7] = [
 pub struct PermutePasses {
     dev: Device,
     classify: ComputePipeline,
-    /// Sorting-pass shaders created so far, by variant and sample keys (`shader_for`).
-    sort: PipelineCache<(SortVariant, bool)>,
+    /// Sorting-pass shaders created so far, by variant.
+    sort: PipelineCache<SortVariant>,
 }
 
 impl std::fmt::Debug for PermutePasses {
@@ -175,7 +179,13 @@ impl PermutePasses {
         seeds: &Buffer,
     ) -> Result<()> {
         input.check(v, p.block)?;
-        let sample_keys = v.cycle && p.cycle_sample_keys != 0;
+        if v.cycle && v.sample_keys != (p.cycle_sample_keys != 0) {
+            return Err(PermuteError::Invalid(format!(
+                "sorting pass: {} with cycle_sample_keys = {}",
+                v.shader(),
+                p.cycle_sample_keys
+            )));
+        }
         let mut resources: Vec<(&str, Res)> = vec![
             ("estimate", input.estimate.into()),
             ("mask", input.mask.into()),
@@ -184,7 +194,7 @@ impl PermutePasses {
         for ((b, buffer), on) in SORT_OPTIONAL
             .iter()
             .zip(input.optional())
-            .zip(optional_flags(v, sample_keys))
+            .zip(optional_flags(v))
         {
             resources.extend(buffer.filter(|_| on).map(|buf| (b.name, buf.into())));
         }
@@ -194,24 +204,22 @@ impl PermutePasses {
         };
         let groups = block_groups(p, area)?;
         let dev = &self.dev;
-        let pipeline = self
-            .sort
-            .get_or_create((v, sample_keys), |(v, sample_keys)| {
-                let optional = SORT_OPTIONAL
-                    .iter()
-                    .zip(optional_flags(v, sample_keys))
-                    .filter(|(_, on)| *on);
-                let bindings: Vec<Binding> = SORT_BINDINGS
-                    .into_iter()
-                    .chain(optional.map(|(b, _)| *b))
-                    .collect();
-                pipeline(
-                    dev,
-                    &v.shader_for(sample_keys),
-                    &bindings,
-                    std::mem::size_of::<SortParams>(),
-                )
-            })?;
+        let pipeline = self.sort.get_or_create(v, |v| {
+            let optional = SORT_OPTIONAL
+                .iter()
+                .zip(optional_flags(v))
+                .filter(|(_, on)| *on);
+            let bindings: Vec<Binding> = SORT_BINDINGS
+                .into_iter()
+                .chain(optional.map(|(b, _)| *b))
+                .collect();
+            pipeline(
+                dev,
+                &v.shader(),
+                &bindings,
+                std::mem::size_of::<SortParams>(),
+            )
+        })?;
         rec.dispatch(pipeline, &resources, bytemuck::bytes_of(p), groups)?;
         Ok(())
     }

@@ -14,8 +14,10 @@ pub struct RenderConfig {
     /// Path vertices after the camera (1 = direct light only).
     pub bounces: u32,
     pub method: Method,
-    /// Sorting block edge B (2..=8).
-    pub block: u32,
+    /// Sorting block edge B (2..=8) of the methods that take one (`Method::fixed_block` is
+    /// `None`); `None`: [`crate::PAPER_BLOCK`]. A method with blocks of its own refuses
+    /// another size.
+    pub block: Option<u32>,
     /// Seeded sampler; `None` = the method's default.
     pub sampler: Option<Sampler>,
     /// Experiment: hash the frame index into fixed seeds (breaks the temporal correlation).
@@ -67,8 +69,8 @@ impl RenderConfig {
             height,
             spp: 1,
             bounces: 8,
-            method: Method::SORT_RETARGET,
-            block: 4,
+            method: Method::DEFAULT,
+            block: None,
             sampler: None,
             frame_salt: false,
             sequence: 0,
@@ -87,6 +89,11 @@ impl RenderConfig {
     /// methods if asked (the others keep their own seeds, so baselines stay what they are).
     pub fn tile_seeds(&self) -> bool {
         self.method == Method::Hbo19 || (self.seed_map == SeedMap::Hbo19 && self.method.sorts())
+    }
+
+    /// The sorting block edge in effect.
+    pub fn effective_block(&self) -> u32 {
+        self.method.block(self.block)
     }
 
     /// The seeded sampler in effect.
@@ -114,8 +121,17 @@ impl RenderConfig {
         if self.bounces > 64 {
             return bad(format!("bounces {} is over 64", self.bounces));
         }
-        if !(2..=8).contains(&self.block) {
-            return bad(format!("block size {} is outside 2..=8", self.block));
+        if let Some(block) = self.block {
+            if !(2..=8).contains(&block) {
+                return bad(format!("block size {block} is outside 2..=8"));
+            }
+            if let Some(own) = self.method.fixed_block().filter(|own| *own != block) {
+                return bad(format!(
+                    "block size {block}: {} sorts {own}x{own} blocks of its own (--block \
+                     applies to sort-retarget and its spelled-out forms)",
+                    self.method
+                ));
+            }
         }
         if !self.exposure.is_finite() || self.exposure <= 0.0 {
             return bad(format!(

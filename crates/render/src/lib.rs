@@ -1,5 +1,5 @@
-//! The frame loop a host application drives frame by frame: the method decoded once into a
-//! [`plan`] of passes (`trace -> sort_seeds (retargeting on the way out) -> accumulate ->
+//! The frame loop a host application drives frame by frame: the method decoded into a
+//! [`recipe`] of passes per view state (`trace -> sort_seeds (retargeting on the way out) -> accumulate ->
 //! tonemap` for the paper), one submission per frame with GPU timestamps per pass, up to
 //! [`FRAMES_IN_FLIGHT`] frames in flight. The seed buffer is a permutation at every moment.
 //!
@@ -26,8 +26,8 @@ mod method_spec;
 mod motion;
 mod pairs_gate;
 mod passes;
-mod plan;
 mod readback;
+mod recipe;
 mod seeds;
 mod slots;
 mod stats;
@@ -44,8 +44,8 @@ pub use camera_path::{CameraPath, Keyframe};
 pub use config::{Accumulation, RenderConfig};
 pub use error::{RenderError, Result};
 pub use method::{
-    GRID_BLOCK, Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Target,
-    Transport,
+    GRID_BLOCK, Grouping, Key, MaskDims, Method, Motion, PAPER_BLOCK, Pairs, Permutation, Points,
+    Target, Transport,
 };
 pub use motion::motion_params;
 pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
@@ -63,7 +63,7 @@ use blueshift_scene::{Camera, Scene, SceneGpu};
 use blueshift_trace::TracePass;
 use image::ImagePasses;
 use passes::Masks;
-use plan::FramePlan;
+use recipe::{Recipes, ViewState};
 use seeds::{key_words, seeds_of};
 use slots::FrameSlot;
 
@@ -83,8 +83,8 @@ pub const PERMUTE_PASSES: [&str; 7] = [
 pub struct Renderer {
     dev: Device,
     cfg: RenderConfig,
-    /// What every frame does, decoded from `cfg` whenever it changes.
-    plan: FramePlan,
+    /// What every frame does in each view state, decoded from `cfg` whenever it changes.
+    recipes: Recipes,
     screen: Screen,
     scene: SceneBuffers,
     images: SceneImages,
@@ -121,9 +121,9 @@ pub struct Renderer {
     sort_stats: Buffer,
     /// `sort-grid-adaptive`'s choice of pairs from the counts so far in this sequence.
     pairs_gate: PairsGate,
-    /// G-buffers, surface classes and reprojection state, made when a plan first needs them.
+    /// G-buffers, surface classes and reprojection state, made when a recipe first needs them.
     surfaces: Option<motion::Surfaces>,
-    /// `sort-cycle`'s per-phase history, made when a plan first needs it.
+    /// `sort-cycle`'s per-phase history, made when a recipe first needs it.
     cycle: Option<cycle::CycleHistory>,
     /// The `taa` pass and its state, made when the accumulation first follows the motion.
     taa: Option<taa_pass::TaaPass>,
@@ -176,7 +176,7 @@ impl Renderer {
         ];
         Ok(Self {
             dev: dev.clone(),
-            plan: FramePlan::new(cfg.method, cfg.block),
+            recipes: Recipes::new(&cfg),
             screen,
             scene: scene_buffers,
             images: scene_images,
@@ -247,9 +247,18 @@ impl Renderer {
     }
 
     /// Whether the next frame sees the scene from another view than the frame before it
-    /// (`Method::mask_dims` chooses by it); a first frame has no view before it.
+    /// (its recipe depends on it); a first frame has no view before it.
     pub fn moving(&self) -> bool {
         self.view_changed && self.frame > 0
+    }
+
+    /// The view state of the next frame.
+    fn view_state(&self) -> ViewState {
+        if self.moving() {
+            ViewState::Moving
+        } else {
+            ViewState::Still
+        }
     }
 
     fn view_moved(&mut self) {
@@ -281,20 +290,22 @@ impl Renderer {
         Ok(())
     }
 
-    /// Switches method (and resets the sequence, whose seed map may change with it).
+    /// Switches method (and resets the sequence, whose seed map may change with it). The
+    /// block size asked for stays where the new method takes one.
     pub fn set_method(&mut self, method: Method) -> Result<()> {
         let cfg = RenderConfig {
             method,
+            block: self.cfg.block.filter(|_| method.fixed_block().is_none()),
             ..self.cfg.clone()
         };
         self.initial_seeds = seeds_of(&cfg, &self.screen, &self.assets)?;
-        self.plan = FramePlan::new(cfg.method, cfg.block);
+        self.recipes = Recipes::new(&cfg);
         self.cfg = cfg;
         self.reset()
     }
 
     /// Changes spp, bounces or block size without resetting seeds (accumulation restarts).
-    pub fn set_quality(&mut self, spp: u32, bounces: u32, block: u32) -> Result<()> {
+    pub fn set_quality(&mut self, spp: u32, bounces: u32, block: Option<u32>) -> Result<()> {
         let cfg = RenderConfig {
             spp,
             bounces,
@@ -309,7 +320,7 @@ impl Renderer {
             self.masks.keys = Buffer::upload(&self.dev, "assets.hbo19_keys", &words)?;
             self.masks.keys_spp = keys_spp;
         }
-        self.plan = FramePlan::new(cfg.method, cfg.block);
+        self.recipes = Recipes::new(&cfg);
         self.cfg = cfg;
         self.accumulated = 0;
         Ok(())
@@ -324,7 +335,7 @@ impl Renderer {
             .stats)
     }
 
-    /// Records the next frame as its plan says and submits it without waiting; returns the
+    /// Records the next frame as its recipe says and submits it without waiting; returns the
     /// frames that had to be finished first (the one whose slot it takes, and the one before
     /// it when this frame depends on what that one read back).
     pub fn submit_frame(&mut self) -> Result<Vec<Completed>> {
@@ -334,23 +345,23 @@ impl Renderer {
             done.extend(self.complete_slot(previous)?);
         }
         self.make_state()?;
+        let recipe = self.recipes.get(self.view_state()).clone();
         let tp = self.trace_params();
-        let moving = self.moving();
-        if self.cfg.method.follows_target() {
+        if recipe.sort.is_some_and(|s| s.follow_target) {
             self.follow.update(&motion_params(&tp, &self.screen));
         }
         self.view_changed = false;
-        let (offset, times) = self.prepare_frame(&tp)?;
-        let sort = match self.plan.sort() {
-            Some(s) => Some(self.sort_params(&s, offset, moving)?),
+        self.slot_rec().begin()?;
+        let (offset, times) = self.prepare_frame(&recipe, &tp)?;
+        let sort = match &recipe.sort {
+            Some(s) => Some((*s, self.sort_params(s, offset)?)),
             None => None,
         };
-        self.slot_rec().begin()?;
-        for pass in self.plan.passes.clone() {
-            self.record_pass(pass, &tp, sort.as_ref())?;
+        for pass in &recipe.passes {
+            self.record_pass(*pass, &recipe, &tp, sort.as_ref())?;
         }
         self.submit_slot(self.frame, times)?;
-        if self.plan.swap_seeds {
+        if recipe.swap_seeds {
             self.current = 1 - self.current;
         }
         self.frame += 1;
@@ -358,12 +369,13 @@ impl Renderer {
         Ok(done)
     }
 
-    /// Makes the state the plan needs and no earlier frame made.
+    /// Makes the state the recipes need and no earlier frame made.
     fn make_state(&mut self) -> Result<()> {
-        if self.plan.surfaces && self.surfaces.is_none() {
+        let r = self.recipes.base();
+        if r.surfaces && self.surfaces.is_none() {
             self.surfaces = Some(motion::Surfaces::new(&self.dev, &self.screen)?);
         }
-        if self.plan.cycle_history && self.cycle.is_none() {
+        if r.cycle_history && self.cycle.is_none() {
             self.cycle = Some(cycle::CycleHistory::new(&self.dev, &self.screen)?);
         }
         self.make_taa_state()

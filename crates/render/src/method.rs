@@ -163,6 +163,9 @@ pub enum Method {
 /// measured best on the bundled scenes (docs/experiments.md).
 pub const GRID_BLOCK: u32 = 8;
 
+/// The sorting block edge of the methods that take `--block` unless told (the paper's 4).
+pub const PAPER_BLOCK: u32 = 4;
+
 /// The camera jitter's sample dimensions (0 and 1), as a `Method::mask_dims` bit set.
 const JITTER_DIMS: u32 = 0b11;
 
@@ -203,11 +206,13 @@ const CYCLE: Permutation = Permutation {
 };
 
 impl Method {
-    /// The sorting pass only (Heitz & Belcour 2019, without retargeting).
+    /// The sorting pass only (Heitz & Belcour 2019, without retargeting): the spelled-out
+    /// form `sort-retarget:transport=none`, for the paper's analysis.
     pub const SORT: Method = Method::Permute(SORT);
-    /// Sorting + retargeting (Heitz & Belcour 2019): the default.
+    /// Sorting + retargeting (Heitz & Belcour 2019): the paper.
     pub const SORT_RETARGET: Method = Method::Permute(PAPER);
-    /// Moving grid, reprojection, surfaces, history keys, thin-class pairs.
+    /// Moving grid, reprojection, surfaces, history keys, thin-class pairs
+    /// (`sort-grid-adaptive:pairs=thin`).
     pub const SORT_GRID_HISTORY: Method = Method::Permute(HISTORY);
     /// [`Method::SORT_GRID_HISTORY`] with adaptive pairs.
     pub const SORT_GRID_ADAPTIVE: Method = Method::Permute(Permutation {
@@ -218,34 +223,42 @@ impl Method {
     /// against spatio-temporal mask slices ([`Points::Cycle`]) that move with the image
     /// ([`Target::Follow`]).
     pub const SORT_CYCLE: Method = Method::Permute(CYCLE);
+    /// The default of the library and of every command.
+    pub const DEFAULT: Method = Method::SORT_CYCLE;
 
-    /// The named presets `--method` offers, in the order of the documentation.
-    pub const PRESETS: [(&'static str, Method); 14] = [
+    /// The named presets `--method` offers, in the order of the documentation: the baseline,
+    /// a progressive sequence, a mask, the paper, the best single frames at depth under
+    /// motion, the default.
+    pub const PRESETS: [(&'static str, Method); 6] = [
         ("white", Method::White),
         ("sobol", Method::Sobol),
-        ("hbo19", Method::Hbo19),
         ("mask-r2", Method::MaskR2),
+        ("sort-retarget", Method::SORT_RETARGET),
+        ("sort-grid-adaptive", Method::SORT_GRID_ADAPTIVE),
+        ("sort-cycle", Method::SORT_CYCLE),
+    ];
+
+    /// Baselines kept for comparisons only: `eval` and `bench` take these names
+    /// ([`Method::parse_comparison`]); `--method` of the other commands does not.
+    pub const COMPARISONS: [(&'static str, Method); 6] = [
+        ("hbo19", Method::Hbo19),
         ("stbn", Method::Stbn),
         ("fast", Method::Fast),
         ("mask-rot", Method::MaskRot),
         ("mask-rot-follow", Method::MaskRotFollow),
         ("blocknet", Method::BlockNet),
-        ("sort", Method::SORT),
-        ("sort-retarget", Method::SORT_RETARGET),
-        ("sort-grid-history", Method::SORT_GRID_HISTORY),
-        ("sort-grid-adaptive", Method::SORT_GRID_ADAPTIVE),
-        ("sort-cycle", Method::SORT_CYCLE),
     ];
 
-    /// The preset's name, or the spelled-out form `PRESET:field=value,...` relative to the
-    /// permutation preset it differs from in the fewest fields (the first such preset), so an
-    /// ablation reads as the method it changes (`sort-cycle:mask=none`).
+    /// The preset's or comparison's name, or the spelled-out form `PRESET:field=value,...`
+    /// relative to the permutation preset it differs from in the fewest fields (the first
+    /// such preset), so an ablation reads as the method it changes (`sort-cycle:mask=none`).
     pub fn name(self) -> String {
-        if let Some((name, _)) = Self::PRESETS.iter().find(|(_, m)| *m == self) {
+        let named = Self::PRESETS.iter().chain(&Self::COMPARISONS);
+        if let Some((name, _)) = named.clone().find(|(_, m)| *m == self) {
             return (*name).to_string();
         }
         let Method::Permute(p) = self else {
-            return format!("{self:?}"); // every baseline is a preset
+            return format!("{self:?}"); // every baseline is named
         };
         let own = crate::method_spec::fields(&p);
         let differing = |q: &Permutation| -> Vec<String> {
@@ -259,8 +272,34 @@ impl Method {
             .iter()
             .filter_map(|(n, m)| m.permutation().map(|q| (*n, differing(&q))))
             .min_by_key(|(_, f)| f.len())
-            .expect("sort is a permutation preset");
+            .expect("sort-retarget is a permutation preset");
         format!("{base}:{}", fields.join(","))
+    }
+
+    /// Every named method: the presets, then the comparison baselines.
+    pub fn named() -> impl Iterator<Item = (&'static str, Method)> {
+        Self::PRESETS.into_iter().chain(Self::COMPARISONS)
+    }
+
+    /// Every spelled-out permutation the passes can run (the presets' among them).
+    pub fn all_permutations() -> Vec<Method> {
+        crate::method_spec::all_valid()
+            .into_iter()
+            .map(Method::Permute)
+            .collect()
+    }
+
+    /// A preset, a comparison baseline or a spelled-out form: what `eval` and `bench` take.
+    pub fn parse_comparison(s: &str) -> Result<Method, String> {
+        match Self::COMPARISONS.iter().find(|(n, _)| *n == s) {
+            Some((_, m)) => Ok(*m),
+            None => s.parse().map_err(|e: String| {
+                format!(
+                    "{e}; for comparisons also: {}",
+                    Self::COMPARISONS.map(|(n, _)| n).join(", ")
+                )
+            }),
+        }
     }
 
     /// All preset names, for error messages and `--help`.
@@ -311,13 +350,17 @@ impl Method {
         self.has(|p| p.transport == Transport::Grid)
     }
 
-    /// The sorting block edge: `requested` (the paper's B) or GRID_BLOCK for the moving grid.
-    pub fn block(self, requested: u32) -> u32 {
-        if self.shifts_grid() || self.cycles_points() {
-            GRID_BLOCK
-        } else {
-            requested
-        }
+    /// The block edge this method sorts with whatever is asked ([`GRID_BLOCK`] for the moving
+    /// grid and the point cycle); `None` where `--block` chooses it.
+    pub fn fixed_block(self) -> Option<u32> {
+        (self.shifts_grid() || self.cycles_points()).then_some(GRID_BLOCK)
+    }
+
+    /// The sorting block edge: the method's own, else `requested` (the paper's B), else
+    /// [`PAPER_BLOCK`].
+    pub fn block(self, requested: Option<u32>) -> u32 {
+        self.fixed_block()
+            .unwrap_or(requested.unwrap_or(PAPER_BLOCK))
     }
 
     /// Whether the sample index advances with the frame (a progressive sequence per pixel).
@@ -441,17 +484,6 @@ impl Method {
     /// Whether the sorting pass counts skewed classes and `PairsGate` chooses the pairs.
     pub fn adapts_pairs(self) -> bool {
         self.has(|p| p.pairs == Pairs::Adaptive)
-    }
-
-    /// Which classes rank against antithetic pairs (`SortParams::pairs`): 0 none, 1 thin ones,
-    /// 2 every one; adaptive pairs take what `gate` chose from the sequence's counts so far.
-    pub fn pairs(self, gate: &crate::PairsGate) -> u32 {
-        match self.permutation().map(|p| p.pairs) {
-            Some(Pairs::Thin) => 1,
-            Some(Pairs::Adaptive) => gate.pairs(),
-            Some(Pairs::All) => 2,
-            _ => 0,
-        }
     }
 }
 

@@ -1,5 +1,6 @@
 //! The spelled-out form of a permutation method, for experiments: `PRESET:field=value,...`,
-//! e.g. `sort:transport=grid,key=history,motion=reproject`. Each field overrides the preset's.
+//! e.g. `sort-retarget:transport=none` (the paper's sort alone). Each field overrides the
+//! preset's.
 use crate::method::{
     Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Target, Transport,
 };
@@ -99,6 +100,23 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
     Ok(())
 }
 
+/// Every permutation the passes can run (every combination of field values that
+/// [`check`] accepts), in the order of [`FIELDS`]' values.
+pub fn all_valid() -> Vec<Permutation> {
+    let sizes = FIELDS.map(|(_, values)| values.len());
+    let count: usize = sizes.iter().product();
+    (0..count)
+        .filter_map(|mut i| {
+            let mut p = crate::Method::SORT_RETARGET.permutation()?;
+            for ((field, values), n) in FIELDS.iter().zip(sizes) {
+                set(&mut p, field, values[i % n]).ok()?;
+                i /= n;
+            }
+            check(&p).ok().map(|()| p)
+        })
+        .collect()
+}
+
 /// Every field with its values, `key=raw|demod|history, grouping=...`.
 pub(crate) fn syntax() -> String {
     FIELDS
@@ -148,10 +166,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn presets_round_trip_by_name() {
+    fn comparisons_parse_where_compared_only() {
+        for (name, m) in Method::COMPARISONS {
+            assert_eq!(Method::parse_comparison(name), Ok(m));
+            assert!(name.parse::<Method>().is_err(), "{name}");
+        }
+        let e = Method::parse_comparison("mask-rot-fast").expect_err("unknown");
+        assert!(e.contains("for comparisons also: hbo19"), "{e}");
         for (name, m) in Method::PRESETS {
+            assert_eq!(Method::parse_comparison(name), Ok(m));
+        }
+    }
+
+    #[test]
+    fn presets_round_trip_by_name() {
+        for (name, m) in Method::named() {
             assert_eq!(m.name(), name);
-            assert_eq!(name.parse::<Method>(), Ok(m));
+            assert_eq!(Method::parse_comparison(name), Ok(m));
             if let Some(p) = m.permutation() {
                 assert_eq!(check(&p), Ok(()), "{name}");
             }
@@ -160,22 +191,32 @@ mod tests {
 
     #[test]
     fn spelled_out_forms_name_presets_and_experiments() {
-        let adaptive: Method = "sort-grid-history:pairs=adaptive".parse().expect("valid");
-        assert_eq!(adaptive, Method::SORT_GRID_ADAPTIVE);
-        let m: Method = "sort:transport=grid,key=demod".parse().expect("valid");
-        assert_eq!(m.name(), "sort:key=demod,transport=grid");
+        let history: Method = "sort-grid-adaptive:pairs=thin".parse().expect("valid");
+        assert_eq!(history, Method::SORT_GRID_HISTORY);
+        assert_eq!(history.name(), "sort-grid-adaptive:pairs=thin");
+        let sort: Method = "sort-retarget:transport=none".parse().expect("valid");
+        assert_eq!(
+            (sort, sort.name().as_str()),
+            (Method::SORT, "sort-retarget:transport=none")
+        );
+        let m: Method = "sort-retarget:transport=grid,key=demod"
+            .parse()
+            .expect("valid");
+        assert_eq!(m.name(), "sort-retarget:key=demod,transport=grid");
         // Named after the nearest preset, whichever preset it was written from.
-        let near: Method = "sort:points=cycle,grouping=surfaces,mask=motion,target=follow"
+        let near: Method = "sort-retarget:transport=none,points=cycle,grouping=surfaces,\
+                            mask=motion,target=follow"
             .parse()
             .expect("valid");
         assert_eq!(near.name(), "sort-cycle:grouping=surfaces");
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
-        let c: Method = "sort:points=cycle,grouping=still-surfaces,mask=motion,target=follow"
+        let c: Method = "sort-retarget:transport=none,points=cycle,grouping=still-surfaces,\
+                         mask=motion,target=follow"
             .parse()
             .expect("valid");
         assert_eq!(c, Method::SORT_CYCLE);
-        assert!(c.cycles_points() && c.advances_index() && c.block(4) == crate::GRID_BLOCK);
+        assert!(c.cycles_points() && c.advances_index() && c.block(Some(4)) == crate::GRID_BLOCK);
         assert_eq!(c.default_sampler(), blueshift_sampling::Sampler::BlockNet);
         let plain: Method = "sort-cycle:mask=none".parse().expect("valid");
         assert_eq!(plain.name(), "sort-cycle:mask=none");
@@ -201,15 +242,18 @@ mod tests {
     fn bad_forms_name_the_problem() {
         let err = |s: &str| s.parse::<Method>().expect_err(s);
         assert!(err("sort-grid-oracle").contains("unknown method"));
-        assert!(err("sort:key=oracle").contains("unknown key 'oracle'"));
-        assert!(err("sort:colour=red").contains("unknown field 'colour'"));
-        assert!(err("sort:key").contains("expected field=value"));
-        assert!(err("sort:key=history").contains("needs motion=reproject"));
+        // Comparison baselines are no presets: eval and bench take them by name only.
+        assert!(err("stbn").contains("unknown method"));
+        assert!(err("sort").contains("unknown method"));
+        assert!(err("sort-retarget:key=oracle").contains("unknown key 'oracle'"));
+        assert!(err("sort-retarget:colour=red").contains("unknown field 'colour'"));
+        assert!(err("sort-retarget:key").contains("expected field=value"));
+        assert!(err("sort-retarget:key=history").contains("needs motion=reproject"));
         assert!(err("sort-retarget:pairs=thin").contains("needs transport=grid"));
         assert!(err("white:key=raw").contains("not a permutation method"));
         assert!(err("sort-retarget:points=cycle").contains("needs transport=none"));
         assert!(err("sort-cycle:points=loop").contains("points: fixed, cycle"));
-        assert!(err("sort-grid-history:grouping=still-surfaces").contains("needs motion=none"));
+        assert!(err("sort-grid-adaptive:grouping=still-surfaces").contains("needs motion=none"));
         assert!(err("sort-retarget:target=follow").contains("needs points=cycle"));
     }
 }

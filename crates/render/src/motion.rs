@@ -1,6 +1,7 @@
 //! Our extensions of the paper's frame loop (docs/algorithm.md, "Extensions"):
 //! G-buffer, edge-aware grouping (classes for the sorting pass) and bijective seed
 //! reprojection, with the mask offset following the image's mean motion.
+use crate::recipe::{FrameRecipe, SortGrid};
 use crate::{GBufferPass, RenderError, Renderer, Result, SceneBuffers, SceneImages};
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::motion::{
@@ -42,11 +43,8 @@ pub(crate) struct Surfaces {
     /// What the current G-buffer and classes were made from, when no reprojection has
     /// written a G-buffer since: a frame with the same view and blocks reuses both.
     classified: Option<ClassInputs>,
-    /// The previous frame's classification inputs (None after a reset), which tell whether
-    /// the view moved (`grouping=still-surfaces`).
-    class_view: Option<ClassInputs>,
     /// Whether `classes` holds one class per block (all zero), as a moving view leaves it.
-    pub(crate) classes_blocks: bool,
+    classes_blocks: bool,
     /// What the last reprojection was computed from, and once checked, whether its source
     /// map sends every pixel to itself or nowhere (a still view).
     reprojection_inputs: Option<(ReprojectionInputs, Option<bool>)>,
@@ -127,7 +125,6 @@ impl Surfaces {
             anchors: None,
             gviews: [None; 2],
             classified: None,
-            class_view: None,
             classes_blocks: false,
             reprojection_inputs: None,
         })
@@ -139,7 +136,6 @@ impl Surfaces {
         self.prev_offset = None;
         self.last_motion = (0, 0);
         self.classified = None;
-        self.class_view = None;
     }
 
     /// The history means the sorting pass ranks against (history-key methods).
@@ -245,23 +241,25 @@ pub fn motion_params(prev: &TraceParams, screen: &Screen) -> MotionParams {
 }
 
 impl Renderer {
-    /// Runs before the frame's main submission for the methods that need a G-buffer: writes
-    /// it, and for reprojecting methods moves the seeds along the motion since the previous
-    /// frame (own submission: for the retargeting methods, the mean motion read back sets this
-    /// frame's mask offset).
-    /// Returns the mask offset this frame sorts against and the passes' times.
+    /// Records the frame's first passes for reprojecting methods, into the frame's open
+    /// command buffer: the G-buffer, and the seeds moved along the motion since the previous
+    /// frame. Returns the mask offset this frame sorts against, and the times of the part of
+    /// the frame submitted early: a fixed block grid follows the image's mean motion, which is
+    /// read back, so there the passes so far run (and are waited for) before the frame goes
+    /// on recording. The moving grid needs no read-back, so such a frame is one submission
+    /// and the next one is recorded while it runs.
     pub(crate) fn prepare_frame(
         &mut self,
+        recipe: &FrameRecipe,
         tp: &TraceParams,
     ) -> Result<((u32, u32), Vec<PassTime>)> {
-        let m = self.cfg.method;
         let (shift, n) = (self.assets.shift, self.assets.n);
-        if !self.plan.reproject {
-            return Ok((mask_offset(self.frame, shift, n), Vec::new()));
+        let fixed = (mask_offset(self.frame, shift, n), Vec::new());
+        if !recipe.reproject {
+            return Ok(fixed);
         }
         let st = state(&mut self.surfaces)?;
         let rec = &mut self.slots[self.slot].rec;
-        rec.begin()?;
         st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
         let reproject = st.prev.is_some();
         // A still view's repeat of an identity reprojection is skipped: the seeds stay where
@@ -280,26 +278,27 @@ impl Renderer {
             rec.begin_pass("reproject_seeds")?;
             r.reproject_seeds(rec, &mp, &self.seeds[cur], &self.seeds[next])?;
         }
-        let times = rec.submit_and_wait()?;
         st.prev = Some(*tp);
         st.reprojected = reproject;
         if run.is_some() {
             self.current = 1 - self.current;
         }
-        if m.shifts_grid() {
+        if recipe.sort.is_some_and(|s| s.grid == SortGrid::Moving) {
             // The moving grid sorts against the next frame's own mask offset: nothing to follow.
-            return Ok((mask_offset(self.frame, shift, n), times));
+            return Ok(fixed);
         }
-        let offset = match st.prev_offset {
-            None => (0, 0),
+        let (offset, times) = match st.prev_offset {
+            None => ((0, 0), Vec::new()),
             Some(o) => {
-                let motion = if reproject {
-                    mean_motion(st.reprojection.read_motion()?)
+                let (motion, times) = if reproject {
+                    let times = rec.submit_and_wait()?;
+                    rec.begin()?;
+                    (mean_motion(st.reprojection.read_motion()?), times)
                 } else {
-                    (0, 0)
+                    ((0, 0), Vec::new())
                 };
                 st.last_motion = motion;
-                follow_offset(o, shift, motion, n)
+                (follow_offset(o, shift, motion, n), times)
             }
         };
         st.prev_offset = Some(offset);
@@ -332,32 +331,19 @@ impl Renderer {
     }
 
     /// For edge-aware methods: records the G-buffer (with `gbuffer`: when `prepare_frame` did
-    /// not write it) and the classes the sorting pass then reads. With `still_only`, a frame
-    /// whose view moved since the previous one gets one class per block (zeroed classes; the
-    /// sort then ranks as `grouping=blocks`) and no G-buffer; the first frame of a sequence
-    /// and every still one classify.
+    /// not write it) and the classes the sorting pass then reads.
     pub(crate) fn record_classes(
         &mut self,
         tp: &TraceParams,
         sort: &blueshift_permute::SortParams,
         gbuffer: bool,
-        still_only: bool,
     ) -> Result<()> {
         let st = state(&mut self.surfaces)?;
         let rec = &mut self.slots[self.slot].rec;
         let inputs = ClassInputs::of(tp, sort);
-        let moved = st.class_view.replace(inputs).is_some_and(|v| v != inputs);
         if gbuffer {
             if st.classified == Some(inputs) {
                 return Ok(()); // a still view: last frame's G-buffer and classes stand
-            }
-            if still_only && moved {
-                if !st.classes_blocks {
-                    rec.fill_buffer(&st.classes, 0)?;
-                    st.classes_blocks = true;
-                }
-                st.classified = None;
-                return Ok(());
             }
             st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
         }
@@ -366,6 +352,19 @@ impl Renderer {
             .classify_pixels(rec, sort, st.current_gbuffer(), &st.classes)?;
         st.classes_blocks = false;
         st.classified = gbuffer.then_some(inputs);
+        Ok(())
+    }
+
+    /// For `grouping=still-surfaces` while the view moves: one class per block (zeroed
+    /// classes, written once while they stay so; the sort ranks as `grouping=blocks`) and no
+    /// G-buffer.
+    pub(crate) fn record_classes_per_block(&mut self) -> Result<()> {
+        let st = state(&mut self.surfaces)?;
+        if !st.classes_blocks {
+            self.slots[self.slot].rec.fill_buffer(&st.classes, 0)?;
+            st.classes_blocks = true;
+        }
+        st.classified = None;
         Ok(())
     }
 

@@ -51,6 +51,17 @@ impl PairsGate {
         }
     }
 
+    /// `SortParams::pairs` of a sort whose rule is `rule`: 0 none, 1 thin classes, 2 every
+    /// class; adaptive pairs take what the gate chose from the sequence's counts so far.
+    pub(crate) fn pairs_of(&self, rule: crate::Pairs) -> u32 {
+        match rule {
+            crate::Pairs::Off => 0,
+            crate::Pairs::Thin => 1,
+            crate::Pairs::Adaptive => self.pairs(),
+            crate::Pairs::All => 2,
+        }
+    }
+
     /// The smoothed share so far (None before the first counted frame).
     pub fn share(&self) -> Option<f64> {
         self.share

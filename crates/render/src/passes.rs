@@ -1,24 +1,24 @@
-//! The pass functions a [`crate::plan::FramePlan`] lists: each records one pass into the
+//! The pass functions a [`crate::recipe::FrameRecipe`] lists: each records one pass into the
 //! frame slot's command buffer. What a pass reads and writes is what its shaders declare
 //! (`readonly` bindings are read), from which the recorder places the barriers.
-use crate::plan::{MaskSource, Pass, SortGrid, SortPlan};
+use crate::recipe::{FrameRecipe, MaskSource, Pass, SortGrid, SortPlan};
 use crate::{Accumulation, RenderError, Renderer, Result, trace_params};
 use blueshift_device::{Buffer, Device};
 use blueshift_layout::params::{ImageParams, TraceParams};
-use blueshift_layout::variants::SortVariant;
 use blueshift_permute::{
     CycleInput, SortInput, SortParams, add_mask_shift, grid_offset, mask_offset, pair_phase,
     sequence_mask_shift,
 };
-use blueshift_sampling::Sampler;
 
 impl Renderer {
-    /// Records `pass` of the frame traced with `tp`, sorting with `sort`'s parameters.
+    /// Records `pass` of the frame `recipe` describes, traced with `tp`, sorting with `sort`'s
+    /// plan and parameters.
     pub(crate) fn record_pass(
         &mut self,
         pass: Pass,
+        recipe: &FrameRecipe,
         tp: &TraceParams,
-        sort: Option<&SortParams>,
+        sort: Option<&(SortPlan, SortParams)>,
     ) -> Result<()> {
         let sort = || sort.ok_or_else(|| RenderError::Invalid("sort pass without params".into()));
         match pass {
@@ -26,17 +26,18 @@ impl Renderer {
                 .rec
                 .fill_buffer(&self.trace_status, 0)?),
             Pass::FollowAnchors => self.record_anchors(tp),
-            Pass::Trace { mask } => self.trace_pass(tp, mask),
+            Pass::Trace => self.trace_pass(tp, recipe.trace.mask),
             Pass::HistoryKeys => self.record_history_keys(),
-            Pass::Classify {
-                gbuffer,
-                still_only,
-            } => self.record_classes(tp, sort()?, gbuffer, still_only),
-            Pass::ClearSortStats if sort()?.count_skew != 0 => {
+            Pass::Classify { gbuffer } => self.record_classes(tp, &sort()?.1, gbuffer),
+            Pass::ClassesPerBlock => self.record_classes_per_block(),
+            Pass::ClearSortStats if sort()?.1.count_skew != 0 => {
                 Ok(self.slots[self.slot].rec.fill_buffer(&self.sort_stats, 0)?)
             }
             Pass::ClearSortStats => Ok(()),
-            Pass::Sort(plan) => self.sort_pass(&plan, sort()?),
+            Pass::Sort => {
+                let (plan, params) = sort()?;
+                self.sort_pass(plan, params)
+            }
             Pass::Accumulate if self.cfg.accumulation != Accumulation::Mean => {
                 self.record_accumulation(tp)
             }
@@ -68,15 +69,10 @@ impl Renderer {
     }
 
     /// The sorting pass's parameters for this frame: `offset` is the mask offset the frame
-    /// sorts against (fixed grids); `moving`: the frame sees another view than the one before.
-    /// The sequence's mask shift comes on top (`sequence_mask_shift`).
-    pub(crate) fn sort_params(
-        &self,
-        s: &SortPlan,
-        offset: (u32, u32),
-        moving: bool,
-    ) -> Result<SortParams> {
-        let sp = self.sort_params_unshifted(s, offset, moving)?;
+    /// sorts against (fixed grids). The sequence's mask shift comes on top
+    /// (`sequence_mask_shift`).
+    pub(crate) fn sort_params(&self, s: &SortPlan, offset: (u32, u32)) -> Result<SortParams> {
+        let sp = self.sort_params_unshifted(s, offset)?;
         let shift = sequence_mask_shift(self.cfg.sequence);
         let (offset_x, offset_y) = add_mask_shift((sp.offset_x, sp.offset_y), shift, sp.mask_size);
         Ok(SortParams {
@@ -86,13 +82,7 @@ impl Renderer {
         })
     }
 
-    fn sort_params_unshifted(
-        &self,
-        s: &SortPlan,
-        offset: (u32, u32),
-        moving: bool,
-    ) -> Result<SortParams> {
-        let m = self.cfg.method;
+    fn sort_params_unshifted(&self, s: &SortPlan, offset: (u32, u32)) -> Result<SortParams> {
         Ok(match s.grid {
             SortGrid::Moving => {
                 // Sorted for the frame they will be rendered in: the next mask, the next grid.
@@ -100,32 +90,28 @@ impl Renderer {
                 let next = mask_offset(self.frame + 1, shift, n);
                 let grid = grid_offset(self.frame + 1, s.block);
                 SortParams {
-                    pairs: m.pairs(&self.pairs_gate),
-                    phase: pair_phase(self.frame + 1, m.hashes_pair_phase()),
-                    count_skew: u32::from(m.adapts_pairs()),
+                    pairs: self.pairs_gate.pairs_of(s.pairs),
+                    phase: pair_phase(self.frame + 1, s.hashed_phase),
+                    count_skew: u32::from(s.count_skew),
                     ..self.screen.sort_params_on_grid(s.block, next, grid)?
                 }
             }
             SortGrid::Cycle => {
                 // Fixed blocks against the next spatio-temporal slice, the point cycle first.
-                // While the view moves the seeds rank by their next light sample (their
-                // recorded keys belong to what the block showed a cycle ago), which needs the
-                // block net's points.
                 let (n, t) = (self.assets.stbn_n, self.assets.stbn_frames);
-                let sample_keys = moving && self.cfg.effective_sampler() == Sampler::BlockNet;
-                let cp = self
-                    .screen
-                    .cycle_params(self.frame, n, t, self.accumulated, sample_keys);
+                let cp =
+                    self.screen
+                        .cycle_params(self.frame, n, t, self.accumulated, s.sample_keys);
                 // `target=follow`: the volume moves with the image (one frame behind it: a
                 // constant lag, which does not matter to a pattern that only has to move along).
-                let offset = if self.cfg.method.follows_target() {
+                let offset = if s.follow_target {
                     self.follow.offset(n)
                 } else {
                     (0, 0)
                 };
                 let sp = SortParams {
                     mask_size: n,
-                    cycle_shade_edges: u32::from(!moving && self.cfg.method.shade_edges()),
+                    cycle_shade_edges: u32::from(s.shade_edges),
                     ..self.screen.sort_params(s.block, offset)?
                 };
                 blueshift_permute::with_cycle(sp, &cp)
@@ -136,15 +122,7 @@ impl Renderer {
 
     fn sort_pass(&mut self, s: &SortPlan, sp: &SortParams) -> Result<()> {
         let surfaces = self.surfaces.as_ref();
-        // One class per block (a moving view under `grouping=still-surfaces`) ranks exactly as
-        // no classes: the variant without them skips a load per pixel and the class bits.
-        let v = match surfaces {
-            Some(st) if s.variant.classes && st.classes_blocks => SortVariant {
-                classes: false,
-                ..s.variant
-            },
-            _ => s.variant,
-        };
+        let v = s.variant;
         let missing = |what: &str| RenderError::Invalid(format!("{} without {what}", v.shader()));
         let cycle = match (v.cycle, &self.cycle) {
             (false, _) => None,

@@ -32,7 +32,7 @@ struct InFlight {
     frame: u64,
     /// Samples per trace dispatch it ran (the next dispatch size follows its count).
     per_dispatch: u32,
-    /// Times of its reprojection submission, which was waited for.
+    /// Times of the part of it submitted early and waited for (a mean motion read back).
     times: Vec<PassTime>,
     gate: bool,
     output: bool,
@@ -98,7 +98,7 @@ impl Renderer {
     pub(crate) fn record_readback(&mut self) -> Result<()> {
         let s = &mut self.slots[self.slot];
         s.rec.copy_buffer(&self.trace_status, &s.status, None)?;
-        if self.plan.adapts_pairs {
+        if self.recipes.base().adapts_pairs {
             s.rec.copy_region(
                 &self.sort_stats,
                 &s.status,
@@ -122,7 +122,7 @@ impl Renderer {
             frame,
             per_dispatch: self.per_dispatch,
             times,
-            gate: self.plan.adapts_pairs,
+            gate: self.recipes.base().adapts_pairs,
             output,
         });
         self.slot = (self.slot + 1) % FRAMES_IN_FLIGHT;
@@ -193,6 +193,6 @@ impl Renderer {
             blueshift_trace::TRACE_FIRST_DISPATCH_VERTICES,
             self.cfg.bounces,
         );
-        self.plan.adapts_pairs || self.cfg.spp > fewest
+        self.recipes.base().adapts_pairs || self.cfg.spp > fewest
     }
 }

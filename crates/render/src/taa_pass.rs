@@ -4,7 +4,7 @@
 //! [`crate::motion::Surfaces`] ping-pong the reprojecting methods use, written here when the
 //! plan does not) and the previous frame's camera.
 use crate::motion::{Surfaces, ViewInputs};
-use crate::plan::Pass;
+use crate::recipe::Pass;
 use crate::{Accumulation, RenderError, Renderer, Result, motion_params};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, MemoryLocation, Recorder, Res};
 use blueshift_layout::motion::TaaParams;

@@ -43,10 +43,6 @@ impl Sampler {
             Sampler::BlockNet => "blocknet",
         }
     }
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|s| s.name() == name)
-    }
 }
 
 /// A sampler evaluator holding the Sobol direction numbers (and HBO+19 keys, if any).

@@ -79,10 +79,27 @@ mod tests {
         assert!(xs.iter().all(|&x| (0.0..1.0).contains(&x)));
     }
 
+    /// Dimensions of one sample are uncorrelated (within 5 standard errors of zero over 2^16
+    /// samples), and swapping a pixel's coordinates gives another seed.
     #[test]
-    fn deterministic_and_dimension_sensitive() {
-        assert_eq!(white(7, 3, 2), white(7, 3, 2));
-        assert_ne!(white(7, 3, 2), white(7, 3, 1));
-        assert_ne!(pixel_seed(1, 2, 0), pixel_seed(2, 1, 0));
+    fn dimensions_are_uncorrelated_and_pixels_distinct() {
+        let n = 1 << 16;
+        let corr = |a: u32, b: u32| {
+            let c: f64 = (0..n)
+                .map(|i| (white(99, i, a) as f64 - 0.5) * (white(99, i, b) as f64 - 0.5))
+                .sum();
+            // Pearson correlation: the covariance over the uniform variance 1/12.
+            c / n as f64 * 12.0
+        };
+        let se = 1.0 / (n as f64).sqrt();
+        for (a, b) in [(0, 1), (1, 2), (2, 3), (0, 7)] {
+            let r = corr(a, b);
+            assert!(r.abs() < 5.0 * se, "dims {a}, {b}: correlation {r}");
+        }
+        let swapped = (0..64u32)
+            .flat_map(|x| (0..64u32).map(move |y| (x, y)))
+            .filter(|(x, y)| x != y && pixel_seed(*x, *y, 0) == pixel_seed(*y, *x, 0))
+            .count();
+        assert_eq!(swapped, 0);
     }
 }

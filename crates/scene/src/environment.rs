@@ -294,7 +294,7 @@ impl EnvTables {
         }
     }
 
-    /// Probability of texel `(i, j)` (CPU twin of `env_texel_probability`).
+    /// Probability of texel `(i, j)` (CPU twin of `env_probability` in `lights.glsl`).
     pub fn probability(&self, i: u32, j: u32) -> f32 {
         let row = &self.conditional[(j * self.width) as usize..((j + 1) * self.width) as usize];
         let pc = row[i as usize] - if i > 0 { row[i as usize - 1] } else { 0.0 };

@@ -166,7 +166,7 @@ pub(crate) fn assets(
         }
     }
     let path = a.root.join("MANIFEST");
-    blueshift_analysis::write_atomic(&path, manifest::format(&entries).as_bytes())?;
+    blueshift_assets::write_atomic(&path, manifest::format(&entries).as_bytes())?;
     println!("wrote {} ({} files)", path.display(), entries.len());
     Ok(())
 }

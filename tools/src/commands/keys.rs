@@ -85,7 +85,7 @@ pub(crate) fn keys(a: &KeysArgs) -> anyhow::Result<()> {
         let table = p.table(out.keys).map_err(anyhow::Error::msg)?;
         let path = a.out.join(file_name(a.tile, spp));
         ensure_parent(&path)?;
-        blueshift_analysis::write_atomic(&path, &table.to_bytes())?;
+        blueshift_assets::write_atomic(&path, &table.to_bytes())?;
         println!(
             "{}: {t}x{t} tile, spp {spp}, {} pairs, energy {:.1} -> {:.1} ({:.2}%), \
              error LF {:.4} -> {:.4} (white ~0.045), {} of {} proposals accepted, {secs:.1} s",

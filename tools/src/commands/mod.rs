@@ -33,7 +33,7 @@ pub(crate) fn save_png(img: image::DynamicImage, path: &Path) -> anyhow::Result<
     let mut buf = std::io::Cursor::new(Vec::new());
     img.write_to(&mut buf, image::ImageFormat::Png)
         .with_context(|| format!("encoding {}", path.display()))?;
-    blueshift_analysis::write_atomic(path, buf.get_ref())?;
+    blueshift_assets::write_atomic(path, buf.get_ref())?;
     Ok(())
 }
 

@@ -88,7 +88,7 @@ pub(crate) fn sky(a: &SkyArgs) -> anyhow::Result<()> {
         .write_to(&mut buf, image::ImageFormat::Hdr)
         .context("encoding the sky as Radiance HDR")?;
     super::ensure_parent(&a.out)?;
-    blueshift_analysis::write_atomic(&a.out, buf.get_ref())?;
+    blueshift_assets::write_atomic(&a.out, buf.get_ref())?;
     println!("wrote {} ({w}x{h})", a.out.display());
     Ok(())
 }

@@ -205,5 +205,5 @@ fn draw_lines(
 pub(super) fn save(img: &RgbImage, path: &Path) -> Result<()> {
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png)?;
-    crate::output::write_atomic(path, &out.into_inner())
+    Ok(crate::output::write_atomic(path, &out.into_inner())?)
 }

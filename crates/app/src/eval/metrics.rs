@@ -92,7 +92,7 @@ pub struct StreamMetrics {
     pub p2: Split,
     pub lf: f64,
     /// P4 and P8 (the blurs of [`WIDE_SIGMAS`]) on the pixels away from emitters by 3 sigma
-    /// ([`Masks::far_from_emitters`]): the error a spatial denoiser keeps.
+    /// ([`Masks::far`]): the error a spatial denoiser keeps.
     pub p4: f64,
     pub p8: f64,
 }

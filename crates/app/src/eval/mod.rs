@@ -12,7 +12,7 @@ mod report_taa;
 mod track;
 
 use crate::GpuOpts;
-use crate::args::{SceneArgs, method_parser};
+use crate::args::{SceneArgs, comparison_parser};
 use crate::output::prepare_dir;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::{Gray, luminance};
@@ -34,12 +34,12 @@ const MAX_FIRST_SEQUENCE: u32 = 1 << 20;
 pub struct EvalArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Comma-separated methods (presets or spelled-out `sort:...` forms); `white` is always
-    /// added (ratios are against it).
+    /// Comma-separated methods (presets, comparison baselines or spelled-out
+    /// `PRESET:field=value` forms); `white` is always added (ratios are against it).
     #[arg(
         long,
         value_delimiter = ',',
-        value_parser = method_parser(),
+        value_parser = comparison_parser(),
         default_value = "sort-cycle,white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive"
     )]
     pub methods: Vec<Method>,
@@ -175,6 +175,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     });
     let dev = gpu.device()?;
     RenderConfig {
+        method: Method::SORT_RETARGET, // a method that takes the block size
         block: args.scene.block,
         ..RenderConfig::new(args.width, args.height)
     }
@@ -303,7 +304,8 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
         let cfg = RenderConfig {
             spp: config.spp,
             bounces: config.bounces,
-            block: args.scene.block,
+            // `--block` sizes the methods that take one; the others sort their own.
+            block: args.scene.block.filter(|_| method.fixed_block().is_none()),
             method,
             sampler: args.scene.sampler,
             sequence: seq,

@@ -156,7 +156,7 @@ fn save(path: &Path, img: &Image) -> Result<()> {
     bytes.extend(img.w.to_le_bytes());
     bytes.extend(img.h.to_le_bytes());
     bytes.extend(bytemuck::cast_slice::<[f32; 4], u8>(&img.px));
-    write_atomic(path, &bytes)
+    Ok(write_atomic(path, &bytes)?)
 }
 
 /// Renders (or loads from cache) one reference image.

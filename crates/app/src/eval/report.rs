@@ -92,7 +92,7 @@ pub fn write(
     let report = json!({
         "settings": {
             "scene": a.scene.scene, "width": a.width, "height": a.height, "frames": a.frames,
-            "window": [a.frames / 2, a.frames - 1], "block": a.scene.block,
+            "window": [a.frames / 2, a.frames - 1], "block": a.scene.block.unwrap_or(blueshift_render::PAPER_BLOCK),
             "sampler": a.scene.sampler.map(|s| s.name()),
             "reference_spp": a.reference_spp, "sequences": a.sequences,
             "first_sequence": a.first_sequence, "jitter": !a.no_jitter,
@@ -137,7 +137,7 @@ fn markdown(
         a.frames,
         a.frames / 2,
         a.frames - 1,
-        a.scene.block,
+        a.scene.block.unwrap_or(blueshift_render::PAPER_BLOCK),
         blueshift_render::GRID_BLOCK,
         a.reference_spp,
         a.sequences,

@@ -2,19 +2,16 @@
 use super::input::Action;
 use blueshift_render::{FrameStats, Method};
 
-/// The methods of keys 1-9 and 0.
-pub const VIEW_METHODS: [Method; 10] = [
-    Method::White,
-    Method::Sobol,
-    Method::MaskR2,
-    Method::Stbn,
-    Method::SORT,
-    Method::SORT_RETARGET,
-    Method::SORT_GRID_HISTORY,
-    Method::SORT_GRID_ADAPTIVE,
-    Method::Hbo19,
-    Method::SORT_CYCLE,
-];
+/// The methods of keys 1-6: the presets, in their order.
+pub const VIEW_METHODS: [Method; Method::PRESETS.len()] = {
+    let mut m = [Method::White; Method::PRESETS.len()];
+    let mut i = 0;
+    while i < m.len() {
+        m[i] = Method::PRESETS[i].1;
+        i += 1;
+    }
+    m
+};
 /// Limits of the interactive controls (the renderer accepts more; these stay interactive).
 pub const MAX_SPP: u32 = 64;
 pub const MAX_BOUNCES: u32 = 16;
@@ -29,10 +26,11 @@ pub const REFERENCE_SPP: u32 = 4;
 pub struct Settings {
     /// Method of the left (or only) view and of the right view in split-screen.
     pub methods: [Method; 2],
-    /// Which side keys 1-7 set (0 = left/only, 1 = right).
+    /// Which side keys 1-6 set (0 = left/only, 1 = right).
     pub side: usize,
     pub spp: u32,
     pub bounces: u32,
+    /// The block size keys B / Shift+B set, for the methods that take one.
     pub block: u32,
     pub accumulate: bool,
     pub split: bool,
@@ -65,6 +63,12 @@ fn step(v: u32, by: i32, lo: u32, hi: u32) -> u32 {
 }
 
 impl Settings {
+    /// The block size to give a renderer of `method`: the keys' choice where the method takes
+    /// one, its own otherwise.
+    pub fn block_for(&self, method: Method) -> Option<u32> {
+        method.fixed_block().is_none().then_some(self.block)
+    }
+
     /// Applies a command, keeping every value in range.
     pub fn apply(&mut self, action: Action) -> Change {
         let before = self.clone();
@@ -163,7 +167,7 @@ pub fn title(s: &Settings, frame_ms: f64, stats: &[FrameStats], present_ms: f64)
         s.method_label(),
         s.spp,
         s.bounces,
-        s.methods[0].block(s.block), // the block the (left) method sorts with
+        s.methods[0].block(Some(s.block)), // the block the (left) method sorts with
         frame_ms,
         if frame_ms > 0.0 {
             1000.0 / frame_ms
@@ -230,10 +234,15 @@ mod tests {
         s.apply(Action::Method(2));
         assert_eq!(s.methods[0], Method::MaskR2, "side ignored without split");
         assert_eq!(s.apply(Action::ToggleSplit), Change::Split);
-        s.apply(Action::Method(4));
-        assert_eq!(s.methods, [Method::MaskR2, Method::SORT]);
-        assert_eq!(s.method_label(), "mask-r2 | [sort]");
-        assert_eq!(s.apply(Action::Method(4)), Change::Nothing);
+        s.apply(Action::Method(3));
+        assert_eq!(s.methods, [Method::MaskR2, Method::SORT_RETARGET]);
+        assert_eq!(s.method_label(), "mask-r2 | [sort-retarget]");
+        assert_eq!(s.apply(Action::Method(3)), Change::Nothing);
+        // Every preset has its key, in the presets' order.
+        for (i, (_, m)) in Method::PRESETS.iter().enumerate() {
+            s.apply(Action::Method(i));
+            assert_eq!(s.methods[1], *m);
+        }
     }
 
     #[test]

@@ -220,16 +220,21 @@ impl ViewGpu {
             Change::Method => {
                 // In split-screen both restart, so both sides show the same frame index.
                 self.a.set_method(s.methods[0])?;
+                self.a
+                    .set_quality(s.spp, s.bounces, s.block_for(s.methods[0]))?;
                 if let Some(b) = &mut self.b {
                     b.set_method(s.methods[1])?;
+                    b.set_quality(s.spp, s.bounces, s.block_for(s.methods[1]))?;
                 }
             }
             Change::Quality => {
                 for r in [Some(&mut self.a), self.b.as_mut()].into_iter().flatten() {
-                    r.set_quality(s.spp, s.bounces, s.block)?;
+                    let block = s.block_for(r.config().method);
+                    r.set_quality(s.spp, s.bounces, block)?;
                 }
                 if let Some(r) = &mut self.reference {
-                    r.set_quality(s.spp.max(REFERENCE_SPP), s.bounces, s.block)?;
+                    let block = s.block_for(r.config().method);
+                    r.set_quality(s.spp.max(REFERENCE_SPP), s.bounces, block)?;
                 }
             }
             Change::Reset => {

@@ -43,7 +43,7 @@ pub enum Event {
 /// A command given by a key press.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Action {
-    /// Keys 1-9, 0: index into `controls::VIEW_METHODS` (0 is the tenth).
+    /// Keys 1-6: index into `controls::VIEW_METHODS`.
     Method(usize),
     Block(i32),
     Spp(i32),
@@ -59,8 +59,7 @@ pub enum Action {
 /// The command of a key pressed while not looking around, if any.
 pub fn action_of(key: Key) -> Option<Action> {
     Some(match key {
-        Key::Char(c @ '1'..='9') => Action::Method(c as usize - '1' as usize),
-        Key::Char('0') => Action::Method(9),
+        Key::Char(c @ '1'..='6') => Action::Method(c as usize - '1' as usize),
         Key::Char('b') => Action::Block(1),
         Key::Char('B') => Action::Block(-1),
         Key::Char('+' | '=') => Action::Spp(1),
@@ -267,8 +266,8 @@ mod tests {
         let mut i = Input::new(&camera());
         assert_eq!(i.handle(press(Key::Char('1'))), Some(Action::Method(0)));
         assert_eq!(i.handle(press(Key::Char('6'))), Some(Action::Method(5)));
-        assert_eq!(i.handle(press(Key::Char('9'))), Some(Action::Method(8)));
-        assert_eq!(i.handle(press(Key::Char('0'))), Some(Action::Method(9)));
+        assert_eq!(i.handle(press(Key::Char('7'))), None);
+        assert_eq!(i.handle(press(Key::Char('0'))), None);
         assert_eq!(i.handle(press(Key::Char('x'))), None);
         assert_eq!(i.handle(press(Key::Char('b'))), Some(Action::Block(1)));
         assert_eq!(i.handle(press(Key::Char('B'))), Some(Action::Block(-1)));

@@ -25,7 +25,7 @@ use std::path::PathBuf;
     mut_arg("spp", |a| a.help("Samples per pixel per frame (keys + and -)")),
     mut_arg("bounces", |a| a.default_value("4")
         .help("Path vertices after the camera (keys [ and ])")),
-    mut_arg("block", |a| a.help("Sorting block edge, 2..=8 (keys B and Shift+B)")),
+    mut_arg("block", |a| a.help("Sorting block edge of sort-retarget, 2..=8 [default: 4] (keys B and Shift+B)")),
 )]
 pub struct ViewArgs {
     #[command(flatten)]
@@ -115,7 +115,7 @@ pub fn run(gpu: &GpuOpts, args: &ViewArgs) -> Result<()> {
         side: 0,
         spp: m.spp,
         bounces: m.bounces,
-        block: m.scene.block,
+        block: m.scene.block.unwrap_or(blueshift_render::PAPER_BLOCK),
         accumulate: !args.no_accumulation,
         split: args.split,
         error: args.error_view,

@@ -49,7 +49,7 @@ fn sized(cfg: RenderConfig, size: (u32, u32), s: &Settings) -> RenderConfig {
         height: size.1,
         spp: s.spp,
         bounces: s.bounces,
-        block: s.block,
+        block: s.block_for(cfg.method),
         ..cfg
     }
 }

@@ -19,6 +19,17 @@ pub const TINY: [&str; 8] = [
     "1",
 ];
 
+/// `cmd` without any inherited `BLUESHIFT_*` variable (settings and fault hooks alike), so a
+/// test sees only what it sets.
+pub fn clean(mut cmd: Command) -> Command {
+    for (var, _) in std::env::vars_os() {
+        if var.to_string_lossy().starts_with("BLUESHIFT_") {
+            cmd.env_remove(var);
+        }
+    }
+    cmd
+}
+
 pub fn assets() -> PathBuf {
     // Runtime variable (set by `cargo test`): right even if the binary came from another checkout.
     Path::new(&std::env::var_os("CARGO_MANIFEST_DIR").expect("run under cargo"))
@@ -48,18 +59,8 @@ impl Case {
     }
     /// Runs `blueshift ARGS` with a clean environment (no inherited BLUESHIFT_* settings).
     pub fn run(&self, args: &[&str], env: &[(&str, &str)]) -> Output {
-        let mut cmd = Command::new(BIN);
+        let mut cmd = clean(Command::new(BIN));
         cmd.args(args).env("XDG_RUNTIME_DIR", self.dir.path());
-        for var in [
-            "BLUESHIFT_VALIDATION",
-            "BLUESHIFT_DEVICE_INDEX",
-            "BLUESHIFT_ASSETS",
-            "BLUESHIFT_TEST_DEVICE_LOST",
-            "BLUESHIFT_MAX_STORAGE_BUFFER_RANGE",
-            "BLUESHIFT_TEST_PANIC",
-        ] {
-            cmd.env_remove(var);
-        }
         for (k, v) in env {
             cmd.env(k, v);
         }

@@ -1,0 +1,174 @@
+use super::*;
+use crate::method::{Grouping, Permutation};
+use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_RECORD_PRIMARY};
+
+const VIEWS: [ViewState; 2] = [ViewState::Still, ViewState::Moving];
+
+fn config(method: Method, block: Option<u32>) -> RenderConfig {
+    RenderConfig {
+        method,
+        block: block.filter(|_| method.fixed_block().is_none()),
+        ..RenderConfig::new(8, 8)
+    }
+}
+
+/// Every named method and every spelled-out form the passes can run.
+fn every_method() -> Vec<(String, Method)> {
+    let named = Method::named().map(|(n, m)| (n.to_string(), m));
+    let forms = Method::all_permutations()
+        .into_iter()
+        .map(|m| (m.name(), m));
+    named.chain(forms).collect()
+}
+
+/// Every valid form x {still, moving} (and the block sizes that change the variant) decodes
+/// to a recipe whose passes come in dependency order, whose sort variant is a compiled
+/// shader with exactly the inputs the passes make, and whose view-dependent rules are the
+/// documented ones; the fields that do not depend on the view are equal in both recipes.
+#[test]
+fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
+    let forms = Method::all_permutations();
+    for (name, m) in Method::PRESETS {
+        assert!(!m.sorts() || forms.contains(&m), "{name} is a valid form");
+    }
+    let compiled = SortVariant::all();
+    let mut checked = 0;
+    for (name, m) in every_method() {
+        for block in [None, Some(2), Some(8)] {
+            let cfg = config(m, block);
+            let [still, moving] = VIEWS.map(|v| recipe(&cfg, v));
+            let same = |r: &FrameRecipe| {
+                (
+                    r.reproject,
+                    r.surfaces,
+                    r.cycle_history,
+                    r.swap_seeds,
+                    r.adapts_pairs,
+                )
+            };
+            assert_eq!(same(&still), same(&moving), "{name}");
+            for (view, r) in VIEWS.iter().zip([&still, &moving]) {
+                let at = |p: fn(&Pass) -> bool| r.passes.iter().position(p);
+                let trace = at(|p| *p == Pass::Trace).expect("a trace pass");
+                assert_eq!(r.passes.first(), Some(&Pass::ClearStatus), "{name}");
+                assert_eq!(r.passes.last(), Some(&Pass::Readback), "{name}");
+                assert!(Some(trace) < at(|p| *p == Pass::Accumulate), "{name}");
+                let Some(s) = r.sort else {
+                    assert!(!m.sorts() && at(|p| *p == Pass::Sort).is_none(), "{name}");
+                    continue;
+                };
+                let p: Permutation = m.permutation().expect("a sorting method");
+                let v = s.variant;
+                assert!(
+                    compiled.contains(&v),
+                    "{name} {view:?}: {} not compiled",
+                    v.shader()
+                );
+                let sort = at(|p| *p == Pass::Sort).expect("a sort pass");
+                assert!(trace < sort, "{name}");
+                let classify = at(|p| matches!(p, Pass::Classify { .. }));
+                let per_block = at(|p| *p == Pass::ClassesPerBlock);
+                assert_eq!(classify.is_some(), v.classes, "{name} {view:?}");
+                assert!(classify.or(per_block).is_none_or(|c| c < sort), "{name}");
+                assert!(!v.classes || r.surfaces, "{name}");
+                // The view-dependent rules, one by one.
+                let moves = *view == ViewState::Moving;
+                let blocks = moves && p.grouping == Grouping::StillSurfaces;
+                assert_eq!(per_block.is_some(), blocks, "{name} {view:?}");
+                assert_eq!(v.classes, m.edge_aware() && !blocks, "{name} {view:?}");
+                assert_eq!(v.sample_keys, v.cycle && moves, "{name} {view:?}");
+                assert_eq!(s.sample_keys, v.sample_keys, "{name}");
+                assert!(!(s.shade_edges && moves), "{name}: marks while moving");
+                assert_eq!(v.retarget, r.swap_seeds, "{name}");
+                assert_eq!(s.block, cfg.effective_block(), "{name}");
+                assert_eq!(v.large, SortVariant::large_for(s.block), "{name}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 2 * 3 * 100, "{checked} recipes checked");
+}
+
+/// Every method whose samples are not a progressive sequence is salted per frame (else its
+/// deeper dimensions would repeat every frame); `mask-rot`'s Sobol runs on instead, and a
+/// sampler given by hand puts the rotating mask back on white noise.
+#[test]
+fn the_rotating_masks_run_a_sequence_behind_them() {
+    let flags = |method: Method, sampler: Option<Sampler>| {
+        let c = RenderConfig {
+            method,
+            sampler,
+            ..RenderConfig::new(8, 8)
+        };
+        let f = method_flags(&c);
+        (
+            f & TRACE_FLAG_SALT_FRAME != 0,
+            f & TRACE_FLAG_ADVANCE_INDEX != 0,
+        )
+    };
+    for m in [Method::MaskRot, Method::MaskRotFollow] {
+        assert_eq!(m.default_sampler(), Sampler::Sobol, "{m}");
+        assert_eq!(flags(m, None), (false, true), "{m}");
+        assert_eq!(flags(m, Some(Sampler::White)), (true, false), "{m}");
+    }
+    for m in [Method::White, Method::MaskR2, Method::Stbn, Method::Fast] {
+        assert_eq!(flags(m, None), (true, false), "{m}");
+        assert_eq!(flags(m, Some(Sampler::Sobol)), (true, false), "{m}");
+    }
+    assert_eq!(flags(Method::Sobol, None), (false, true));
+}
+
+/// The trace pass reads anchors only in its mask variants (`#if TRACE_MASK`), so every
+/// anchored method must run one.
+#[test]
+fn anchored_methods_have_a_mask_mode() {
+    let anchored: Vec<_> = every_method()
+        .into_iter()
+        .filter(|(_, m)| m.anchors_mask())
+        .collect();
+    assert!(!anchored.is_empty());
+    for (name, m) in anchored {
+        for view in VIEWS {
+            let r = recipe(&config(m, None), view);
+            assert_ne!(r.trace.mask_mode, MASK_MODE_NONE, "{name}");
+            assert_ne!(r.trace.flags & TRACE_FLAG_MASK_ANCHORED, 0, "{name}");
+        }
+    }
+}
+
+/// A method whose seeds leave some dimensions to the mask runs a mask variant in every
+/// state, within the dimensions the mask modes drive (the flag's bits above them would be
+/// ignored by the shader, and a method would silently lose them).
+#[test]
+fn mask_dimensions_have_a_mask_mode() {
+    let mut some = 0;
+    for (name, m) in every_method() {
+        for view in VIEWS {
+            let moving = view == ViewState::Moving;
+            let r = recipe(&config(m, None), view);
+            let dims = m.mask_dims(moving);
+            assert_eq!(
+                r.trace.flags >> TRACE_FLAG_MASK_DIMS_SHIFT & dims,
+                dims,
+                "{name}"
+            );
+            if dims != 0 {
+                some += 1;
+                assert_ne!(r.trace.mask_mode, MASK_MODE_NONE, "{name}");
+                assert_eq!(dims >> MASK_DIMS, 0, "{name}");
+                assert_eq!(dims & 3, 3, "{name}: the jitter comes first");
+            }
+            // Textured pixels' jitter is chosen only where the mask drives the jitter.
+            assert_eq!(m.jitter_flags(moving) != 0, dims & 3 != 0, "{name}");
+            // The sort only sets shading-edge marks; the trace's record clears them.
+            if r.sort.is_some_and(|s| s.shade_edges) {
+                assert_ne!(
+                    r.trace.flags & TRACE_FLAG_RECORD_PRIMARY,
+                    0,
+                    "{name}: marks never cleared"
+                );
+            }
+        }
+    }
+    assert!(some > 0, "no method leaves dimensions to the mask");
+}
