@@ -173,6 +173,11 @@ pub struct SceneArgs {
     /// the hbo19 sampler, so that they start from blue noise; the hbo19 method always uses them).
     #[arg(long, default_value = SeedMap::Random.name(), value_parser = seed_map_parser())]
     pub initial_seeds: SeedMap,
+    /// Let the scene's buffer and image URIs lead outside its directory (`..`, absolute
+    /// paths, `file:` URIs, symlinks out): refused by default, since a downloaded glTF file
+    /// could otherwise read any file the user can.
+    #[arg(long)]
+    pub allow_outside_paths: bool,
 }
 
 impl SceneArgs {
@@ -184,6 +189,7 @@ impl SceneArgs {
         let opts = blueshift_scene::LoadOptions {
             environment,
             quiet: true,
+            allow_outside_paths: self.allow_outside_paths,
             ..Default::default()
         };
         let looks_like_preset = !spec.contains(['/', '.']);

@@ -87,6 +87,39 @@ fn fast_without_its_mask_names_the_tool() {
     c.expect_error(&o, &["unknown method 'fast'", "presets: white"]);
 }
 
+/// A FIFO where a file is expected (environment map, camera path, mask asset) is refused
+/// before it is opened: opening it would block until a writer appears.
+#[test]
+fn special_files_are_refused_unopened() {
+    let c = Case::new();
+    let fifo = |name: &str| {
+        let p = c.path(name);
+        if let Some(dir) = p.parent() {
+            std::fs::create_dir_all(dir).expect("mkdir");
+        }
+        let ok = std::process::Command::new("mkfifo")
+            .arg(&p)
+            .status()
+            .expect("mkfifo runs")
+            .success();
+        assert!(ok, "mkfifo {}", p.display());
+        p.to_str().expect("utf-8").to_string()
+    };
+    let env = fifo("sky.hdr");
+    let o = c.render(&["--environment", &env], &[]);
+    c.expect_error(&o, &["sky.hdr", "not a regular file (a FIFO)"]);
+    let path = fifo("path.json");
+    let o = c.render(&["--camera-path", &path], &[]);
+    c.expect_error(
+        &o,
+        &["camera path", "path.json", "not a regular file (a FIFO)"],
+    );
+    let mask = fifo("assets/masks/bn64.r16");
+    let dir = mask.trim_end_matches("/masks/bn64.r16");
+    let o = c.render(&["--assets", dir], &[]);
+    c.expect_error(&o, &["masks/bn64.r16", "not a regular file (a FIFO)"]);
+}
+
 #[test]
 fn malformed_gltf_and_camera_path() {
     let c = Case::new();
@@ -138,6 +171,10 @@ fn bad_buffer_uris() {
             "(it is an absolute path)",
         ],
     );
+    // Allowed to lead outside, the URI still names no regular file: refused unread.
+    let zero = p.to_str().expect("utf-8");
+    let o = c.render(&["--scene", zero, "--allow-outside-paths"], &[]);
+    c.expect_error(&o, &["zero.gltf: buffer 0", "not a regular file"]);
 }
 
 #[test]

@@ -20,8 +20,11 @@ pub const RETARGET_VERSION: u16 = 1;
 /// Size of the retarget header in bytes.
 pub const RETARGET_HEADER_LEN: usize = 16;
 
+/// The largest asset file read: the 64x64x32 volumes and retarget tables are a few MiB.
+const MAX_ASSET_BYTES: u64 = 256 << 20;
+
 fn read(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|e| AssetError::io(path, e))
+    crate::files::read_regular(path, MAX_ASSET_BYTES).map_err(|e| AssetError::io(path, e))
 }
 
 fn u16s(bytes: &[u8]) -> Vec<u16> {

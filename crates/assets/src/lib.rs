@@ -28,6 +28,7 @@ mod method;
 mod workspace;
 
 pub use error::{AssetError, Result, write_atomic};
+pub mod files;
 pub use formats::{
     Mask, RETARGET_HEADER_LEN, RETARGET_MAGIC, RETARGET_VERSION, RetargetTable, StbnVolume,
     load_mask, load_retarget, load_stbn, save_mask, save_retarget, save_stbn,

@@ -69,6 +69,9 @@ pub const PAN_SPAN: f32 = 64.0;
 /// Cornell box's open front at 24-47 degrees in frames 24-47, mostly its dark outside.
 pub const SWING_SPAN: f32 = 12.0;
 
+/// The largest keyframe file read (a few keyframes take a few hundred bytes).
+const MAX_PATH_FILE_BYTES: u64 = 16 << 20;
+
 /// A triangle wave of slope `speed` per frame between 0 and `span` (sign of `speed`).
 fn back_and_forth(speed: f32, frame: u32, span: f32) -> f32 {
     let d = (speed * frame as f32).abs() % (2.0 * span);
@@ -118,12 +121,16 @@ impl CameraPath {
 
     /// Loads a keyframe file.
     pub fn load(path: &Path) -> Result<CameraPath, String> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
+        let unreadable = |e: &dyn std::fmt::Display| {
             format!(
                 "camera path '{}': {e} (presets: static, pan:PX, orbit:DEG, swing:DEG, strafe:PX, orbit-view:DEG)",
                 path.display()
             )
-        })?;
+        };
+        // A regular file of at most MAX_PATH_FILE_BYTES: a FIFO or device is refused unread.
+        let bytes =
+            blueshift_scene::read_regular(path, MAX_PATH_FILE_BYTES).map_err(|e| unreadable(&e))?;
+        let text = String::from_utf8(bytes).map_err(|e| unreadable(&e))?;
         Self::from_json(&text, &path.display().to_string())
     }
 

@@ -94,11 +94,15 @@ pub enum EnvMapError {
     },
 }
 
+/// The largest environment map file read: a 16384 x 8192 map of 32-bit float RGBA.
+const MAX_MAP_FILE_BYTES: u64 = 16384 * 8192 * 16;
+
 impl EnvMap {
-    /// Reads an equirectangular `.hdr` or `.exr` file. Texels that are NaN, infinite or
+    /// Reads an equirectangular `.hdr` or `.exr` file (a regular file: a FIFO or device is
+    /// refused before it is opened). Texels that are NaN, infinite or
     /// negative become 0, reported in the returned warning (one line).
     pub fn load(path: &Path) -> Result<(EnvMap, Option<String>), EnvMapError> {
-        let bytes = std::fs::read(path).map_err(|e| match e.kind() {
+        let bytes = crate::read_regular(path, MAX_MAP_FILE_BYTES).map_err(|e| match e.kind() {
             std::io::ErrorKind::NotFound => EnvMapError::NotFound {
                 path: path.to_path_buf(),
             },

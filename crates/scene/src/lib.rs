@@ -23,7 +23,6 @@ pub mod bvh;
 mod camera;
 mod environment;
 mod error;
-mod files;
 mod geometry;
 pub mod gpu;
 mod intersect;
@@ -32,6 +31,7 @@ mod load;
 pub mod presets;
 mod scene;
 
+pub use blueshift_assets::files::{open_regular, read_regular};
 pub use bvh::Bvh;
 pub use camera::{Camera, CameraBasis};
 pub use environment::{
@@ -39,7 +39,6 @@ pub use environment::{
     env_texel_of, env_uv,
 };
 pub use error::SceneError;
-pub use files::{open_regular, read_regular};
 pub use geometry::Aabb;
 pub use gpu::{
     BvhNode, GpuBuffer, GpuLight, GpuMaterial, GpuTexture, GpuTriangle, Hit, Ray, SceneGpu,

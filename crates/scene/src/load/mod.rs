@@ -339,8 +339,13 @@ fn load_buffers(
             problem,
         };
         let length = b.length();
-        let short =
-            |got: usize, what: &str| err(crate::files::short_of(got as u64, length as u64, what));
+        let short = |got: usize, what: &str| {
+            err(blueshift_assets::files::short_of(
+                got as u64,
+                length as u64,
+                what,
+            ))
+        };
         let mut data = match b.source() {
             buffer::Source::Bin => match blob.take() {
                 Some(bin) if bin.len() < length => {
@@ -358,7 +363,7 @@ fn load_buffers(
                     }
                     data.0
                 }
-                Ok(Some(file)) => crate::files::read_prefix(&file, length as u64)
+                Ok(Some(file)) => blueshift_assets::files::read_prefix(&file, length as u64)
                     .map_err(|e| err(format!("cannot load: {}: {e}", file.display())))?,
                 Err(uri::Refused::Outside { dir, reason }) => {
                     return Err(SceneError::OutsidePath {

@@ -40,7 +40,7 @@ pub fn read_regular(path: &Path, max_bytes: u64) -> io::Result<Vec<u8>> {
 
 /// Reads exactly the first `n` bytes of the regular file `path` (the rest, if any, is not
 /// read). A shorter file is an error that says it is empty or how many bytes it has.
-pub(crate) fn read_prefix(path: &Path, n: u64) -> io::Result<Vec<u8>> {
+pub fn read_prefix(path: &Path, n: u64) -> io::Result<Vec<u8>> {
     let file = open_regular(path)?;
     // The capacity comes from the file, not from `n`, which input declares.
     let len = file.metadata()?.len();
@@ -56,7 +56,7 @@ pub(crate) fn read_prefix(path: &Path, n: u64) -> io::Result<Vec<u8>> {
 }
 
 /// `"{what} is empty, but byteLength declares N bytes"` or `"{what} has M bytes, ..."`.
-pub(crate) fn short_of(got: u64, declared: u64, what: &str) -> String {
+pub fn short_of(got: u64, declared: u64, what: &str) -> String {
     let has = if got == 0 {
         format!("{what} is empty")
     } else {
