@@ -1,5 +1,6 @@
 //! The glTF loader on a file next to external buffers and images (`quad.bin`, `tex.png`), as
-//! `Scene::load` reads it: relative, percent-encoded and `file:` URIs are resolved.
+//! `Scene::load` reads it: relative and percent-encoded URIs are resolved; those that lead
+//! outside the directory (`..`, absolute paths, `file:` URIs) are refused.
 #![no_main]
 use blueshift_scene::{LoadOptions, Scene, SceneError};
 use libfuzzer_sys::fuzz_target;
