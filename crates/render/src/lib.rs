@@ -20,6 +20,7 @@ mod config;
 mod cycle;
 mod error;
 mod follow;
+mod frame;
 mod image;
 mod method;
 mod method_spec;
@@ -28,6 +29,7 @@ mod pairs_gate;
 mod passes;
 mod readback;
 mod recipe;
+mod resources;
 mod seeds;
 mod slots;
 mod stats;
@@ -62,8 +64,8 @@ use blueshift_permute::{PermutePasses, Screen};
 use blueshift_scene::{Camera, Scene, SceneGpu};
 use blueshift_trace::TracePass;
 use image::ImagePasses;
-use passes::Masks;
-use recipe::{Recipes, ViewState};
+use recipe::Recipes;
+use resources::{FrameResources, Masks, Pipelines};
 use seeds::{key_words, seeds_of};
 use slots::FrameSlot;
 
@@ -86,30 +88,18 @@ pub struct Renderer {
     /// What every frame does in each view state, decoded from `cfg` whenever it changes.
     recipes: Recipes,
     screen: Screen,
-    scene: SceneBuffers,
-    images: SceneImages,
-    trace: TracePass,
-    image: ImagePasses,
-    permute: PermutePasses,
+    /// The pipelines of the passes.
+    passes: Pipelines,
+    /// The buffers the passes read and write.
+    res: FrameResources,
     slots: [FrameSlot; FRAMES_IN_FLIGHT],
     /// The slot the next frame records into.
     slot: usize,
-    seeds: [Buffer; 2],
-    current: usize,
     initial_seeds: Vec<u32>,
-    estimate: Buffer,
-    /// `PRIMARY_*` bits of each pixel's latest primary hit (the trace pass's mask variants
-    /// write them with `TRACE_FLAG_RECORD_PRIMARY` and read them with
-    /// `TRACE_FLAG_SEED_JITTER_ON_TEXTURES`); zero after a reset.
-    primary_flags: Buffer,
-    trace_status: Buffer,
     /// Path vertices per trace dispatch (adapted to the counted loop iterations).
     dispatch_vertices: u32,
     /// Samples per dispatch of the trace pass last recorded.
     per_dispatch: u32,
-    accum: Buffer,
-    ldr: Buffer,
-    masks: Masks,
     assets: MethodAssets,
     camera: Camera,
     view_offset: (f32, f32),
@@ -117,8 +107,6 @@ pub struct Renderer {
     view_changed: bool,
     frame: u64,
     accumulated: u32,
-    /// (skewed classes, classes counted) of the last sorting pass (`SortInput::stats`).
-    sort_stats: Buffer,
     /// `sort-grid-adaptive`'s choice of pairs from the counts so far in this sequence.
     pairs_gate: PairsGate,
     /// G-buffers, surface classes and reprojection state, made when a recipe first needs them.
@@ -178,31 +166,35 @@ impl Renderer {
             dev: dev.clone(),
             recipes: Recipes::new(&cfg),
             screen,
-            scene: scene_buffers,
-            images: scene_images,
-            trace: TracePass::new(dev),
-            image: ImagePasses::new(dev)?,
-            permute: PermutePasses::new(dev)?,
+            passes: Pipelines {
+                trace: TracePass::new(dev),
+                image: ImagePasses::new(dev)?,
+                permute: PermutePasses::new(dev)?,
+            },
+            res: FrameResources {
+                scene: scene_buffers,
+                images: scene_images,
+                seeds,
+                current: 0,
+                estimate: local("frame.estimate", pixels * 16)?,
+                primary_flags,
+                trace_status: local("frame.trace_status", 4 * TRACE_STATUS_WORDS as u64)?,
+                accum: local("frame.accum", pixels * 16)?,
+                ldr: local("frame.ldr", pixels * 4)?,
+                masks: Masks::new(dev, assets, &words, keys_spp)?,
+                sort_stats: local("frame.sort_stats", 8)?,
+            },
             slots: [FrameSlot::new(dev, 0)?, FrameSlot::new(dev, 1)?],
             slot: 0,
-            seeds,
-            current: 0,
             initial_seeds: initial,
-            estimate: local("frame.estimate", pixels * 16)?,
-            primary_flags,
-            trace_status: local("frame.trace_status", 4 * TRACE_STATUS_WORDS as u64)?,
             dispatch_vertices: blueshift_trace::TRACE_FIRST_DISPATCH_VERTICES,
             per_dispatch: 0,
-            accum: local("frame.accum", pixels * 16)?,
-            ldr: local("frame.ldr", pixels * 4)?,
-            masks: Masks::new(dev, assets, &words, keys_spp)?,
             assets: assets.clone(),
             camera: scene.camera_or_default(),
             view_offset: (0.0, 0.0),
             view_changed: false,
             frame: 0,
             accumulated: 0,
-            sort_stats: local("frame.sort_stats", 8)?,
             pairs_gate: PairsGate::default(),
             surfaces: None,
             cycle: None,
@@ -252,15 +244,6 @@ impl Renderer {
         self.view_changed && self.frame > 0
     }
 
-    /// The view state of the next frame.
-    fn view_state(&self) -> ViewState {
-        if self.moving() {
-            ViewState::Moving
-        } else {
-            ViewState::Still
-        }
-    }
-
     fn view_moved(&mut self) {
         self.view_changed = true;
         if self.cfg.accumulation == Accumulation::Mean {
@@ -272,11 +255,11 @@ impl Renderer {
     /// in flight, whose results are dropped).
     pub fn reset(&mut self) -> Result<()> {
         self.finish_frames()?;
-        for s in &mut self.seeds {
+        for s in &mut self.res.seeds {
             s.write(0, &self.initial_seeds)?;
         }
-        zero(&self.dev, &self.primary_flags)?;
-        self.current = 0;
+        zero(&self.dev, &self.res.primary_flags)?;
+        self.res.current = 0;
         self.frame = 0;
         self.accumulated = 0;
         self.pairs_gate = PairsGate::default();
@@ -315,10 +298,10 @@ impl Renderer {
         cfg.validate(&self.dev)?;
         self.finish_frames()?;
         let (words, keys_spp) = key_words(&cfg, &self.assets)?;
-        if keys_spp != self.masks.keys_spp {
+        if keys_spp != self.res.masks.keys_spp {
             // Tables of one asset set share tile and pairs: same size, seeds stay valid.
-            self.masks.keys = Buffer::upload(&self.dev, "assets.hbo19_keys", &words)?;
-            self.masks.keys_spp = keys_spp;
+            self.res.masks.keys = Buffer::upload(&self.dev, "assets.hbo19_keys", &words)?;
+            self.res.masks.keys_spp = keys_spp;
         }
         self.recipes = Recipes::new(&cfg);
         self.cfg = cfg;
@@ -333,52 +316,6 @@ impl Renderer {
         Ok(done
             .ok_or_else(|| RenderError::Invalid("no frame in flight".into()))?
             .stats)
-    }
-
-    /// Records the next frame as its recipe says and submits it without waiting; returns the
-    /// frames that had to be finished first (the one whose slot it takes, and the one before
-    /// it when this frame depends on what that one read back).
-    pub fn submit_frame(&mut self) -> Result<Vec<Completed>> {
-        let mut done: Vec<Completed> = self.complete_slot(self.slot)?.into_iter().collect();
-        if self.needs_previous() {
-            let previous = (self.slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT;
-            done.extend(self.complete_slot(previous)?);
-        }
-        self.make_state()?;
-        let recipe = self.recipes.get(self.view_state()).clone();
-        let tp = self.trace_params();
-        if recipe.sort.is_some_and(|s| s.follow_target) {
-            self.follow.update(&motion_params(&tp, &self.screen));
-        }
-        self.view_changed = false;
-        self.slot_rec().begin()?;
-        let (offset, times) = self.prepare_frame(&recipe, &tp)?;
-        let sort = match &recipe.sort {
-            Some(s) => Some((*s, self.sort_params(s, offset)?)),
-            None => None,
-        };
-        for pass in &recipe.passes {
-            self.record_pass(*pass, &recipe, &tp, sort.as_ref())?;
-        }
-        self.submit_slot(self.frame, times)?;
-        if recipe.swap_seeds {
-            self.current = 1 - self.current;
-        }
-        self.frame += 1;
-        self.accumulated = self.accumulated.saturating_add(1);
-        Ok(done)
-    }
-
-    /// Makes the state the recipes need and no earlier frame made.
-    fn make_state(&mut self) -> Result<()> {
-        let r = self.recipes.base();
-        if r.surfaces && self.surfaces.is_none() {
-            self.surfaces = Some(motion::Surfaces::new(&self.dev, &self.screen)?);
-        }
-        if r.cycle_history && self.cycle.is_none() {
-            self.cycle = Some(cycle::CycleHistory::new(&self.dev, &self.screen)?);
-        }
-        self.make_taa_state()
     }
 
     /// Starts the running mean afresh with the next frame (seeds and frame index are kept):

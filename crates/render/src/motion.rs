@@ -2,7 +2,8 @@
 //! G-buffer, edge-aware grouping (classes for the sorting pass) and bijective seed
 //! reprojection, with the mask offset following the image's mean motion.
 use crate::recipe::{FrameRecipe, SortGrid};
-use crate::{GBufferPass, RenderError, Renderer, Result, SceneBuffers, SceneImages};
+use crate::resources::FrameResources;
+use crate::{GBufferPass, RenderError, Result, SceneBuffers, SceneImages};
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::motion::{
     GBufferTexel, HISTORY_MAX_FRAMES, HISTORY_MIN_FRAMES, HistoryParams, MotionParams,
@@ -10,8 +11,8 @@ use blueshift_layout::motion::{
 };
 use blueshift_layout::params::TraceParams;
 use blueshift_permute::{
-    ANCHOR_WRAP, FollowAnchors, HistoryKeys, Reprojection, Screen, follow_offset, mask_offset,
-    mean_motion,
+    ANCHOR_WRAP, FollowAnchors, HistoryKeys, PermutePasses, Reprojection, Screen, SortParams,
+    follow_offset, mask_offset, mean_motion,
 };
 
 /// The surfaces on screen: G-buffers (this and the previous frame) and their classes, with the
@@ -89,7 +90,7 @@ struct ClassInputs {
 }
 
 impl ClassInputs {
-    fn of(tp: &TraceParams, sort: &blueshift_permute::SortParams) -> Self {
+    fn of(tp: &TraceParams, sort: &SortParams) -> Self {
         Self {
             view: ViewInputs::of(tp),
             blocks: [
@@ -217,12 +218,6 @@ impl Surfaces {
     }
 }
 
-/// The renderer's surfaces, which `make_state` made for the plan.
-fn state(slot: &mut Option<Surfaces>) -> Result<&mut Surfaces> {
-    slot.as_mut()
-        .ok_or_else(|| RenderError::Invalid("the plan needs surfaces".into()))
-}
-
 /// Parameters of the reprojection passes: the camera of the previous frame (`prev`, the
 /// push constants it was traced with) and the screen.
 pub fn motion_params(prev: &TraceParams, screen: &Screen) -> MotionParams {
@@ -240,161 +235,173 @@ pub fn motion_params(prev: &TraceParams, screen: &Screen) -> MotionParams {
     }
 }
 
-impl Renderer {
-    /// Records the frame's first passes for reprojecting methods, into the frame's open
-    /// command buffer: the G-buffer, and the seeds moved along the motion since the previous
-    /// frame. Returns the mask offset this frame sorts against, and the times of the part of
-    /// the frame submitted early: a fixed block grid follows the image's mean motion, which is
-    /// read back, so there the passes so far run (and are waited for) before the frame goes
-    /// on recording. The moving grid needs no read-back, so such a frame is one submission
-    /// and the next one is recorded while it runs.
-    pub(crate) fn prepare_frame(
+/// The renderer's surfaces, which `make_state` made for the recipe.
+pub(crate) fn state(slot: &mut Option<Surfaces>) -> Result<&mut Surfaces> {
+    slot.as_mut()
+        .ok_or_else(|| RenderError::Invalid("the recipe needs surfaces".into()))
+}
+
+impl Surfaces {
+    /// Records a reprojecting frame's first passes into its open command buffer `rec`: the
+    /// G-buffer of camera `tp`, and the seeds of `res` moved along the motion since the
+    /// previous frame (into the other seed buffer, which becomes the current one). Returns the
+    /// mask offset frame `frame` sorts against on `recipe`'s grid, and the times of the part
+    /// of the frame submitted early: a fixed block grid follows the image's mean motion,
+    /// which is read back, so there the passes so far run (and are waited for) before the
+    /// frame goes on recording. The moving grid needs no read-back, so such a frame is one
+    /// submission and the next one is recorded while it runs.
+    #[allow(clippy::too_many_arguments)]
+    pub fn reproject(
         &mut self,
+        rec: &mut Recorder,
         recipe: &FrameRecipe,
         tp: &TraceParams,
+        res: &mut FrameResources,
+        screen: &Screen,
+        (shift, n): ((u32, u32), u32),
+        frame: u64,
     ) -> Result<((u32, u32), Vec<PassTime>)> {
-        let (shift, n) = (self.assets.shift, self.assets.n);
-        let fixed = (mask_offset(self.frame, shift, n), Vec::new());
-        if !recipe.reproject {
-            return Ok(fixed);
-        }
-        let st = state(&mut self.surfaces)?;
-        let rec = &mut self.slots[self.slot].rec;
-        st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
-        let reproject = st.prev.is_some();
+        self.record_gbuffer(rec, tp, &res.scene, &res.images)?;
+        let reproject = self.prev.is_some();
         // A still view's repeat of an identity reprojection is skipped: the seeds stay where
         // they are, `src` and the motion sums keep the last run's (equal) values.
-        let prev = st.prev;
+        let prev = self.prev;
         let run = match prev {
-            Some(prev) if !st.reprojection_unchanged()? => Some(prev),
+            Some(prev) if !self.reprojection_unchanged()? => Some(prev),
             _ => None,
         };
         if let Some(prev) = &run {
-            let mp = motion_params(prev, &self.screen);
+            let mp = motion_params(prev, screen);
             rec.begin_pass("reproject_motion")?;
-            let r = &st.reprojection;
-            r.reproject_motion(rec, &mp, st.previous_gbuffer(), st.current_gbuffer())?;
-            let (cur, next) = (self.current, 1 - self.current);
+            let r = &self.reprojection;
+            r.reproject_motion(rec, &mp, self.previous_gbuffer(), self.current_gbuffer())?;
             rec.begin_pass("reproject_seeds")?;
-            r.reproject_seeds(rec, &mp, &self.seeds[cur], &self.seeds[next])?;
+            r.reproject_seeds(rec, &mp, res.seeds(), res.other_seeds())?;
+            res.swap_seeds();
         }
-        st.prev = Some(*tp);
-        st.reprojected = reproject;
-        if run.is_some() {
-            self.current = 1 - self.current;
-        }
+        self.prev = Some(*tp);
+        self.reprojected = reproject;
         if recipe.sort.is_some_and(|s| s.grid == SortGrid::Moving) {
             // The moving grid sorts against the next frame's own mask offset: nothing to follow.
-            return Ok(fixed);
+            return Ok((mask_offset(frame, shift, n), Vec::new()));
         }
-        let (offset, times) = match st.prev_offset {
+        let (offset, times) = match self.prev_offset {
             None => ((0, 0), Vec::new()),
             Some(o) => {
                 let (motion, times) = if reproject {
                     let times = rec.submit_and_wait()?;
                     rec.begin()?;
-                    (mean_motion(st.reprojection.read_motion()?), times)
+                    (mean_motion(self.reprojection.read_motion()?), times)
                 } else {
                     ((0, 0), Vec::new())
                 };
-                st.last_motion = motion;
+                self.last_motion = motion;
                 (follow_offset(o, shift, motion, n), times)
             }
         };
-        st.prev_offset = Some(offset);
+        self.prev_offset = Some(offset);
         Ok((offset, times))
     }
 
-    /// For history-key methods: records `history_key` on this frame's estimate (after the
-    /// trace pass, before sorting).
-    pub(crate) fn record_history_keys(&mut self) -> Result<()> {
-        let st = state(&mut self.surfaces)?;
+    /// For history-key methods: records `history_key` on this frame's `estimate` (after the
+    /// trace pass, before sorting), against the reprojection's source map.
+    pub fn record_history_keys(
+        &mut self,
+        rec: &mut Recorder,
+        dev: &Device,
+        screen: &Screen,
+        estimate: &Buffer,
+    ) -> Result<()> {
         let p = HistoryParams {
-            width: self.screen.width,
-            height: self.screen.height,
-            padded_width: self.screen.stride(),
-            has_history: st.reprojected as u32,
+            width: screen.width,
+            height: screen.height,
+            padded_width: screen.stride(),
+            has_history: self.reprojected as u32,
             min_frames: HISTORY_MIN_FRAMES,
             max_frames: HISTORY_MAX_FRAMES,
         };
-        let h = match &mut st.history {
+        let h = match &mut self.history {
             Some(h) => h,
-            slot @ None => slot.insert(HistoryKeys::new(&self.dev, &self.screen)?),
+            slot @ None => slot.insert(HistoryKeys::new(dev, screen)?),
         };
-        let rec = &mut self.slots[self.slot].rec;
         rec.begin_pass("history_key")?;
         // This frame's G-buffer (`current_gbuffer`, borrowed field by field): history methods
-        // reproject, so prepare_frame has written it.
-        let gbuffer = &st.gbuffers[1 - st.next_g];
-        h.history_key(rec, &p, &self.estimate, &st.reprojection.src, gbuffer)?;
+        // reproject, so `reproject` has written it.
+        let gbuffer = &self.gbuffers[1 - self.next_g];
+        h.history_key(rec, &p, estimate, &self.reprojection.src, gbuffer)?;
         Ok(())
     }
 
-    /// For edge-aware methods: records the G-buffer (with `gbuffer`: when `prepare_frame` did
-    /// not write it) and the classes the sorting pass then reads.
-    pub(crate) fn record_classes(
+    /// For edge-aware methods: records the G-buffer of camera `tp` (with `gbuffer`: when the
+    /// reprojection did not write it) and the classes the sorting pass with `sort` then reads.
+    pub fn classify(
         &mut self,
+        rec: &mut Recorder,
+        permute: &PermutePasses,
         tp: &TraceParams,
-        sort: &blueshift_permute::SortParams,
+        sort: &SortParams,
         gbuffer: bool,
+        res: &FrameResources,
     ) -> Result<()> {
-        let st = state(&mut self.surfaces)?;
-        let rec = &mut self.slots[self.slot].rec;
         let inputs = ClassInputs::of(tp, sort);
         if gbuffer {
-            if st.classified == Some(inputs) {
+            if self.classified == Some(inputs) {
                 return Ok(()); // a still view: last frame's G-buffer and classes stand
             }
-            st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
+            self.record_gbuffer(rec, tp, &res.scene, &res.images)?;
         }
         rec.begin_pass("classify_pixels")?;
-        self.permute
-            .classify_pixels(rec, sort, st.current_gbuffer(), &st.classes)?;
-        st.classes_blocks = false;
-        st.classified = gbuffer.then_some(inputs);
+        permute.classify_pixels(rec, sort, self.current_gbuffer(), &self.classes)?;
+        self.classes_blocks = false;
+        self.classified = gbuffer.then_some(inputs);
         Ok(())
     }
 
     /// For `grouping=still-surfaces` while the view moves: one class per block (zeroed
     /// classes, written once while they stay so; the sort ranks as `grouping=blocks`) and no
     /// G-buffer.
-    pub(crate) fn record_classes_per_block(&mut self) -> Result<()> {
-        let st = state(&mut self.surfaces)?;
-        if !st.classes_blocks {
-            self.slots[self.slot].rec.fill_buffer(&st.classes, 0)?;
-            st.classes_blocks = true;
+    pub fn classes_per_block(&mut self, rec: &mut Recorder) -> Result<()> {
+        if !self.classes_blocks {
+            rec.fill_buffer(&self.classes, 0)?;
+            self.classes_blocks = true;
         }
-        st.classified = None;
+        self.classified = None;
         Ok(())
     }
 
-    /// For anchored masks: records this frame's G-buffer and, when the view changed since the
-    /// previous frame, `follow_anchors` into the other seed buffer, which becomes the current
-    /// one (the trace reads it).
-    pub(crate) fn record_anchors(&mut self, tp: &TraceParams) -> Result<()> {
+    /// For anchored masks: records this frame's G-buffer (camera `tp`) and, when the view
+    /// changed since the previous frame, `follow_anchors` into the other seed buffer of `res`,
+    /// which becomes the current one (the trace reads it).
+    pub fn follow_anchors(
+        &mut self,
+        rec: &mut Recorder,
+        dev: &Device,
+        tp: &TraceParams,
+        screen: &Screen,
+        res: &mut FrameResources,
+    ) -> Result<()> {
         if ANCHOR_WRAP % tp.mask_size != 0 {
             return Err(RenderError::Invalid(format!(
                 "an anchored mask's tile ({}) must divide {ANCHOR_WRAP}",
                 tp.mask_size
             )));
         }
-        let st = state(&mut self.surfaces)?;
-        let rec = &mut self.slots[self.slot].rec;
-        st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
-        let moved = st.prev.filter(|p| ViewInputs::of(p) != ViewInputs::of(tp));
+        self.record_gbuffer(rec, tp, &res.scene, &res.images)?;
+        let moved = self
+            .prev
+            .filter(|p| ViewInputs::of(p) != ViewInputs::of(tp));
         if let Some(prev) = moved {
-            let pass = match &mut st.anchors {
+            let pass = match &mut self.anchors {
                 Some(a) => a,
-                slot @ None => slot.insert(FollowAnchors::new(&self.dev)?),
+                slot @ None => slot.insert(FollowAnchors::new(dev)?),
             };
-            let mp = motion_params(&prev, &self.screen);
+            let mp = motion_params(&prev, screen);
             rec.begin_pass("follow_anchors")?;
-            let (cur, next) = (self.current, 1 - self.current);
-            let (prev_g, cur_g) = (&st.gbuffers[st.next_g], &st.gbuffers[1 - st.next_g]);
-            pass.follow_anchors(rec, &mp, prev_g, cur_g, &self.seeds[cur], &self.seeds[next])?;
-            self.current = next;
+            let (prev_g, cur_g) = (&self.gbuffers[self.next_g], &self.gbuffers[1 - self.next_g]);
+            pass.follow_anchors(rec, &mp, prev_g, cur_g, res.seeds(), res.other_seeds())?;
+            res.swap_seeds();
         }
-        st.prev = Some(*tp);
+        self.prev = Some(*tp);
         Ok(())
     }
 }

@@ -9,21 +9,21 @@ impl Renderer {
     /// The device buffer of the tonemapped output (packed RGBA8 per pixel, row-major), for
     /// passes that read it after [`Self::render_frame`] returned.
     pub fn ldr_buffer(&self) -> &Buffer {
-        &self.ldr
+        &self.res.ldr
     }
     /// The device buffer of the running mean (`[f32; 4]` per pixel, row-major).
     pub fn accum_buffer(&self) -> &Buffer {
-        &self.accum
+        &self.res.accum
     }
 
     /// The raw estimate of the last frame: (r, g, b, luminance) per pixel, row-major.
     pub fn read_estimate(&self) -> Result<Vec<[f32; 4]>> {
-        Ok(self.estimate.read::<[f32; 4]>()?[..self.pixels()].to_vec())
+        Ok(self.res.estimate.read::<[f32; 4]>()?[..self.pixels()].to_vec())
     }
     /// `PRIMARY_*` bits of each pixel's latest primary hit (kept only by methods that take
     /// the jitter from the seed on textured surfaces; zero otherwise).
     pub fn read_primary_flags(&self) -> Result<Vec<u32>> {
-        Ok(self.primary_flags.read::<u32>()?[..self.pixels()].to_vec())
+        Ok(self.res.primary_flags.read::<u32>()?[..self.pixels()].to_vec())
     }
     /// Overwrites the `PRIMARY_*` bits the next frame's trace pass reads (for tests: which
     /// pixels take their jitter from the seed).
@@ -36,15 +36,15 @@ impl Renderer {
             )));
         }
         self.finish_frames()?;
-        Ok(self.primary_flags.write(0, flags)?)
+        Ok(self.res.primary_flags.write(0, flags)?)
     }
     /// The running mean since the last reset or camera move.
     pub fn read_accum(&self) -> Result<Vec<[f32; 4]>> {
-        Ok(self.accum.read::<[f32; 4]>()?[..self.pixels()].to_vec())
+        Ok(self.res.accum.read::<[f32; 4]>()?[..self.pixels()].to_vec())
     }
     /// The tonemapped accumulation as RGBA8 bytes.
     pub fn read_ldr(&self) -> Result<Vec<u8>> {
-        let words = self.ldr.read::<u32>()?;
+        let words = self.res.ldr.read::<u32>()?;
         Ok(bytemuck::cast_slice(&words[..self.pixels()]).to_vec())
     }
     /// The G-buffer of the last frame, if the method uses one (edge-aware or reprojecting).
@@ -67,7 +67,7 @@ impl Renderer {
     }
     /// The current (padded) seed buffer.
     pub fn read_seeds(&self) -> Result<Vec<u32>> {
-        Ok(self.seeds[self.current].read::<u32>()?[..self.screen.seed_count()].to_vec())
+        Ok(self.res.seeds[self.res.current].read::<u32>()?[..self.screen.seed_count()].to_vec())
     }
     pub fn initial_seeds(&self) -> &[u32] {
         &self.initial_seeds

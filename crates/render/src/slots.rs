@@ -62,11 +62,6 @@ impl FrameSlot {
 }
 
 impl Renderer {
-    /// The command recorder of the frame being recorded.
-    pub(crate) fn slot_rec(&mut self) -> &mut Recorder {
-        &mut self.slots[self.slot].rec
-    }
-
     /// Copies the readback of every following frame's ldr and estimate into its slot, for
     /// [`Completed::output`].
     pub fn set_output_readback(&mut self, on: bool) -> Result<()> {
@@ -97,18 +92,18 @@ impl Renderer {
     /// The frame's last pass: status words (and images) into the slot's readback buffers.
     pub(crate) fn record_readback(&mut self) -> Result<()> {
         let s = &mut self.slots[self.slot];
-        s.rec.copy_buffer(&self.trace_status, &s.status, None)?;
+        s.rec.copy_buffer(&self.res.trace_status, &s.status, None)?;
         if self.recipes.base().adapts_pairs {
             s.rec.copy_region(
-                &self.sort_stats,
+                &self.res.sort_stats,
                 &s.status,
                 4 * TRACE_STATUS_WORDS as u64,
                 8,
             )?;
         }
         if let Some([ldr, estimate]) = &s.output {
-            s.rec.copy_buffer(&self.ldr, ldr, None)?;
-            s.rec.copy_buffer(&self.estimate, estimate, None)?;
+            s.rec.copy_buffer(&self.res.ldr, ldr, None)?;
+            s.rec.copy_buffer(&self.res.estimate, estimate, None)?;
         }
         Ok(())
     }

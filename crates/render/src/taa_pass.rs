@@ -2,17 +2,18 @@
 //! CPU twin is [`crate::taa`]; and which frames the renderer accumulates with it
 //! ([`Accumulation`]). It reads this frame's and the previous frame's G-buffers (the
 //! [`crate::motion::Surfaces`] ping-pong the reprojecting methods use, written here when the
-//! plan does not) and the previous frame's camera.
+//! recipe does not) and the previous frame's camera.
 use crate::motion::{Surfaces, ViewInputs};
-use crate::recipe::Pass;
-use crate::{Accumulation, RenderError, Renderer, Result, motion_params};
+use crate::resources::FrameResources;
+use crate::{Accumulation, Result, motion_params};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, MemoryLocation, Recorder, Res};
 use blueshift_layout::motion::TaaParams;
 use blueshift_layout::params::TraceParams;
+use blueshift_permute::Screen;
 
 /// Frames the running mean of [`Accumulation::Follow`] counts after a TAA step: its next step
 /// weighs the new frame by 1 / (9 + 1) = ALPHA, as the TAA did.
-const MEAN_FRAMES_AFTER_TAA: u32 = 9;
+pub(crate) const MEAN_FRAMES_AFTER_TAA: u32 = 9;
 
 const BINDINGS: [&str; 5] = ["cur", "prev", "history", "estimate", "accum"];
 
@@ -27,7 +28,7 @@ pub(crate) struct TaaPass {
 }
 
 /// How one frame enters the accumulation.
-enum Step {
+pub(crate) enum Step {
     /// From this frame alone.
     Restart,
     /// The running mean.
@@ -86,39 +87,27 @@ impl TaaPass {
     }
 }
 
-impl Renderer {
-    /// Makes the pass and the surfaces it reads when the accumulation follows the motion.
-    pub(crate) fn make_taa_state(&mut self) -> Result<()> {
-        if self.cfg.accumulation == Accumulation::Mean {
-            return Ok(());
-        }
-        if self.surfaces.is_none() {
-            self.surfaces = Some(Surfaces::new(&self.dev, &self.screen)?);
-        }
-        if self.taa.is_none() {
-            let pixels = self.cfg.width as u64 * self.cfg.height as u64;
-            self.taa = Some(TaaPass::new(&self.dev, pixels)?);
-        }
-        Ok(())
-    }
-
-    /// Records this frame's accumulation step for the modes other than [`Accumulation::Mean`]:
-    /// the G-buffer of camera `tp` (unless written already), then a restart, a step of the
-    /// running mean, or the `taa` pass.
-    pub(crate) fn record_accumulation(&mut self, tp: &TraceParams) -> Result<()> {
-        let missing = || RenderError::Invalid("taa pass without its state".into());
-        let st = self.surfaces.as_mut().ok_or_else(missing)?;
-        let taa = self.taa.as_mut().ok_or_else(missing)?;
-        let rec = &mut self.slots[self.slot].rec;
+impl TaaPass {
+    /// Records this frame's G-buffer (camera `tp`, unless written already) and decides how the
+    /// frame enters the accumulation of `accumulated` frames under `mode`.
+    pub fn step(
+        &mut self,
+        rec: &mut Recorder,
+        st: &mut Surfaces,
+        res: &FrameResources,
+        tp: &TraceParams,
+        accumulated: u32,
+        mode: Accumulation,
+    ) -> Result<Step> {
         let view = ViewInputs::of(tp);
-        // This frame's G-buffer, unless the plan wrote it or the camera is still.
+        // This frame's G-buffer, unless the recipe wrote it or the camera is still.
         if st.current_view() != Some(view) {
-            st.record_gbuffer(rec, tp, &self.scene, &self.images)?;
+            st.record_gbuffer(rec, tp, &res.scene, &res.images)?;
         }
-        let step = match taa.prev.replace(*tp) {
-            _ if self.accumulated == 0 => Step::Restart,
+        Ok(match self.prev.replace(*tp) {
+            _ if accumulated == 0 => Step::Restart,
             None => Step::Restart,
-            Some(p) if ViewInputs::of(&p) == view => match self.cfg.accumulation {
+            Some(p) if ViewInputs::of(&p) == view => match mode {
                 Accumulation::Follow => Step::Mean,
                 _ => Step::Taa {
                     camera: p,
@@ -132,26 +121,27 @@ impl Renderer {
                 still: false,
             },
             Some(_) => Step::Restart,
+        })
+    }
+
+    /// Records the `taa` pass: the accumulation of `res` followed from the frame seen by
+    /// `camera` (`still`: the same camera) into this frame's, along `st`'s G-buffers.
+    pub fn record(
+        &self,
+        rec: &mut Recorder,
+        st: &Surfaces,
+        res: &FrameResources,
+        screen: &Screen,
+        camera: &TraceParams,
+        still: bool,
+    ) -> Result<()> {
+        let p = TaaParams {
+            camera: motion_params(camera, screen),
+            still: u32::from(still),
         };
-        match step {
-            Step::Restart => {
-                self.accumulated = 0;
-                self.image_pass(Pass::Accumulate)
-            }
-            Step::Mean => self.image_pass(Pass::Accumulate),
-            Step::Taa { camera, still } => {
-                let p = TaaParams {
-                    camera: motion_params(&camera, &self.screen),
-                    still: u32::from(still),
-                };
-                rec.begin_pass("taa")?;
-                let g = [st.current_gbuffer(), st.previous_gbuffer()];
-                taa.taa(rec, &p, [g[0], g[1], &self.estimate, &self.accum])?;
-                // submit_frame counts this frame after its passes.
-                self.accumulated = MEAN_FRAMES_AFTER_TAA - 1;
-                Ok(())
-            }
-        }
+        rec.begin_pass("taa")?;
+        let g = [st.current_gbuffer(), st.previous_gbuffer()];
+        self.taa(rec, &p, [g[0], g[1], &res.estimate, &res.accum])
     }
 }
 

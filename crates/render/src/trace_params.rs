@@ -1,59 +1,70 @@
 //! The trace pass's push constants (the method's part comes from the frame's recipe), and the
 //! mask offsets of `mask-r2`.
-use crate::{RenderError, Renderer};
+use crate::recipe::TracePlan;
+use crate::{MethodAssets, RenderConfig, RenderError};
 use blueshift_layout::params::{
     MASK_MODE_2D, MASK_MODE_ROTATE, MASK_MODE_SPATIOTEMPORAL, TraceParams,
 };
+use blueshift_permute::Screen;
 use blueshift_permute::{CYCLE_FRAMES, add_mask_shift, sequence_mask_shift};
+use blueshift_scene::Camera;
 
-impl Renderer {
-    /// The path tracer's push constants for the next frame (camera, view window, method).
-    pub fn trace_params(&self) -> TraceParams {
-        let c = &self.cfg;
-        let (vw, vh) = c.view_size.unwrap_or((c.width, c.height));
-        let basis = self.camera.basis(vw as f32 / vh as f32);
-        let trace = self.recipes.get(self.view_state()).trace;
-        let n = self.assets.n;
-        // The mode alone says which mask and offsets: whichever method chose it.
-        let (mask_size, mask_step, off) = match trace.mask_mode {
-            MASK_MODE_2D => (n, 0, r2_offset(self.frame, n)),
-            MASK_MODE_SPATIOTEMPORAL => {
-                let slices = u64::from(self.assets.stbn_frames.max(1));
-                (self.assets.stbn_n, (self.frame % slices) as u32, (0, 0))
-            }
-            // Steps of a 32-bit fixed-point rotation: wrapping at 2^32 is exact.
-            MASK_MODE_ROTATE => (n, self.frame as u32, (0, 0)),
-            _ => (n, 0, (0, 0)),
-        };
-        let off = add_mask_shift(off, sequence_mask_shift(c.sequence), mask_size);
-        TraceParams {
-            cam_origin: basis.position,
-            cam_forward: basis.forward,
-            cam_right: basis.right,
-            cam_up: basis.up,
-            width: c.width,
-            height: c.height,
-            stride: self.screen.stride(),
-            // The sampler's frame: with a point cycle, the phase (the index repeats).
-            frame: if trace.cycle_phase {
-                (self.frame % u64::from(CYCLE_FRAMES)) as u32
-            } else {
-                self.frame as u32
-            },
-            spp: c.spp,
-            sample_index: 0,
-            sample_count: 1,
-            max_bounces: c.bounces,
-            sampler_kind: c.effective_sampler() as u32,
-            flags: trace.flags,
-            mask_mode: trace.mask_mode,
-            mask_size,
-            mask_step,
-            mask_offset_x: off.0,
-            mask_offset_y: off.1,
-            view_offset: glam::Vec2::new(self.view_offset.0, self.view_offset.1),
-            view_size: glam::Vec2::new(vw as f32, vh as f32),
+/// What the path tracer's push constants are made of besides the recipe's trace plan.
+pub(crate) struct TraceInputs<'a> {
+    pub cfg: &'a RenderConfig,
+    pub screen: &'a Screen,
+    pub assets: &'a MethodAssets,
+    pub camera: &'a Camera,
+    pub view_offset: (f32, f32),
+    /// The frame being recorded.
+    pub frame: u64,
+}
+
+/// The path tracer's push constants for a frame (camera, view window, method).
+pub(crate) fn trace_params(trace: &TracePlan, i: &TraceInputs) -> TraceParams {
+    let c = i.cfg;
+    let (vw, vh) = c.view_size.unwrap_or((c.width, c.height));
+    let basis = i.camera.basis(vw as f32 / vh as f32);
+    let n = i.assets.n;
+    // The mode alone says which mask and offsets: whichever method chose it.
+    let (mask_size, mask_step, off) = match trace.mask_mode {
+        MASK_MODE_2D => (n, 0, r2_offset(i.frame, n)),
+        MASK_MODE_SPATIOTEMPORAL => {
+            let slices = u64::from(i.assets.stbn_frames.max(1));
+            (i.assets.stbn_n, (i.frame % slices) as u32, (0, 0))
         }
+        // Steps of a 32-bit fixed-point rotation: wrapping at 2^32 is exact.
+        MASK_MODE_ROTATE => (n, i.frame as u32, (0, 0)),
+        _ => (n, 0, (0, 0)),
+    };
+    let off = add_mask_shift(off, sequence_mask_shift(c.sequence), mask_size);
+    TraceParams {
+        cam_origin: basis.position,
+        cam_forward: basis.forward,
+        cam_right: basis.right,
+        cam_up: basis.up,
+        width: c.width,
+        height: c.height,
+        stride: i.screen.stride(),
+        // The sampler's frame: with a point cycle, the phase (the index repeats).
+        frame: if trace.cycle_phase {
+            (i.frame % u64::from(CYCLE_FRAMES)) as u32
+        } else {
+            i.frame as u32
+        },
+        spp: c.spp,
+        sample_index: 0,
+        sample_count: 1,
+        max_bounces: c.bounces,
+        sampler_kind: c.effective_sampler() as u32,
+        flags: trace.flags,
+        mask_mode: trace.mask_mode,
+        mask_size,
+        mask_step,
+        mask_offset_x: off.0,
+        mask_offset_y: off.1,
+        view_offset: glam::Vec2::new(i.view_offset.0, i.view_offset.1),
+        view_size: glam::Vec2::new(vw as f32, vh as f32),
     }
 }
 
