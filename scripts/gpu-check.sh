@@ -80,7 +80,7 @@ for bounces in 1 8; do
       /^  pass / { ms = $4; frame += ms; if ($2 == "trace") trace = ms }
       /^trace median/ { msps = $(NF - 1) }
       /^  permutation passes/ { perm = $3 }
-      END { printf "%s %.3f %s %s\n", trace, frame, msps, (perm == "" ? "0" : perm) }' "$log")
+      END { printf "%s %.3f %s %.3f\n", trace, frame, msps, (perm == "" ? 0 : perm + 0) + 0 }' "$log")
     [ -n "$white_ms" ] || white_ms="$frame"
     ratio="$(awk -v a="$frame" -v b="$white_ms" 'BEGIN { printf "%.3f", a / b }')"
     rows+=("| \`$method\` | ${size[0]}x${size[1]}, $bounces | $trace | $perm | $frame | $ratio | $msps |")
