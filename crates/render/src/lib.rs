@@ -147,6 +147,12 @@ impl Renderer {
         cfg: RenderConfig,
     ) -> Result<Self> {
         cfg.validate(dev)?;
+        // Every scene buffer against the device's limit before the BVH is built: building a
+        // scene that will not fit costs seconds and gigabytes for nothing (the node buffer is
+        // bounded by its worst case here and checked exactly once built).
+        scene
+            .check_limits(dev.info().max_storage_buffer_range)
+            .map_err(|e| blueshift_trace::TraceError::Scene(e.to_string()))?;
         let gpu_scene = SceneGpu::build(scene);
         let scene_buffers = SceneBuffers::new(dev, &gpu_scene)?;
         let mut scene_images = SceneImages::new(dev, &gpu_scene)?;
