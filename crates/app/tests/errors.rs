@@ -527,4 +527,38 @@ fn bad_environments_and_lights() {
     assert!(stderr.contains("light 0 has intensity -5"), "{stderr}");
     assert!(stderr.contains("nothing emits light"), "{stderr}");
     assert_eq!(stderr.matches("nothing emits light").count(), 1, "{stderr}");
+    assert!(stderr.contains("uniform white environment"), "{stderr}");
+    assert!(max_radiance(&c) > 0.0, "the default environment lights it");
+
+    // Black asked for is black: no white substitute, and the warning says why nothing emits.
+    for (flags, why) in [
+        (["--environment", "0,0,0"], "--environment 0,0,0 is black"),
+        (
+            ["--environment-intensity", "0"],
+            "--environment-intensity 0 turns the environment off",
+        ),
+    ] {
+        let mut args = vec!["--scene", p.to_str().expect("utf-8")];
+        args.extend(flags);
+        let o = c.render(&args, &[]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{stderr}");
+        let warning = stderr
+            .lines()
+            .find(|l| l.contains("nothing emits light"))
+            .unwrap_or_else(|| panic!("{flags:?}: no warning in:\n{stderr}"));
+        assert!(warning.contains(why), "{warning}");
+        assert!(warning.ends_with("the frames will be black"), "{warning}");
+        assert!(!stderr.contains("white"), "{stderr}");
+        assert_eq!(max_radiance(&c), 0.0, "{flags:?}");
+    }
+}
+
+/// The largest channel of the last render's linear output (`out/frame_00000.exr`).
+fn max_radiance(c: &Case) -> f32 {
+    let exr = image::open(c.out().join("frame_00000.exr")).expect("the render's EXR");
+    exr.to_rgb32f()
+        .pixels()
+        .flat_map(|p| p.0)
+        .fold(0.0, f32::max)
 }
