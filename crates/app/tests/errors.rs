@@ -486,6 +486,28 @@ fn bad_environments_and_lights() {
     let garbage = c.write("garbage.hdr", b"#?RADIANCE\nnot really\n");
     let o = c.render(&["--environment", garbage.to_str().expect("utf-8")], &[]);
     c.expect_error(&o, &["garbage.hdr", "cannot decode the environment map"]);
+    let empty = c.write("empty.hdr", b"");
+    let o = c.render(&["--environment", empty.to_str().expect("utf-8")], &[]);
+    c.expect_error(
+        &o,
+        &[
+            "--environment",
+            "empty.hdr: the environment map file is empty",
+        ],
+    );
+    // Over the map limit by its header (16384 x 8193): refused before anything is decoded.
+    let big = c.write(
+        "big.hdr",
+        b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8193 +X 16384\n",
+    );
+    let o = c.render(&["--environment", big.to_str().expect("utf-8")], &[]);
+    c.expect_error(
+        &o,
+        &[
+            "big.hdr: environment map is 16384x8193",
+            "at most 16384x8192 = 134217728 texels in all",
+        ],
+    );
     let png = c.write("sky.png", b"\x89PNG");
     let o = c.render(&["--environment", png.to_str().expect("utf-8")], &[]);
     c.expect_error(&o, &["sky.png", ".hdr (Radiance) or .exr (OpenEXR)"]);
