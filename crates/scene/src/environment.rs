@@ -563,6 +563,34 @@ mod tests {
         assert_eq!(map.texels[5], Vec3::new(1.0, 1.0, 1.0));
     }
 
+    /// A real 16384 x 4096 `.hdr` (4 MiB run-length encoded, 1.6 GB peak RSS decoding): the map
+    /// the `image` crate's default limit refused. Too heavy for every run:
+    /// `cargo test -p blueshift-scene --lib -- --ignored`.
+    #[test]
+    #[ignore = "needs about 1.6 GB of memory"]
+    fn a_16384_by_4096_hdr_decodes() {
+        let (w, h) = (16384u32, 4096u32);
+        let mut bytes = hdr_header(w, h);
+        // Each scanline: the RLE marker, then per channel (R, G, B, exponent) runs of at most
+        // 127 equal bytes: texel (128, 128, 128) x 2^(129 - 136).
+        for _ in 0..h {
+            bytes.extend([2, 2, (w >> 8) as u8, (w & 0xff) as u8]);
+            for value in [128u8, 128, 128, 129] {
+                let mut left = w;
+                while left > 0 {
+                    let n = left.min(127);
+                    bytes.extend([128 + n as u8, value]);
+                    left -= n;
+                }
+            }
+        }
+        let (map, warn) = EnvMap::from_bytes(Path::new("wide.hdr"), &bytes).expect("decodes");
+        assert_eq!((map.width, map.height, warn), (w, h, None));
+        let first = map.texels[0];
+        assert!(first.min_element() > 0.0 && first.is_finite(), "{first}");
+        assert!(map.texels.iter().all(|t| *t == first));
+    }
+
     /// Decoding a map this large takes GiBs, so the decoder's memory limit is checked by its
     /// arithmetic: every map within the size limit may be decoded, as Radiance (RGB f32) or
     /// OpenEXR (up to RGBA f32), 16384 x 4096 included, which the `image` crate's default
