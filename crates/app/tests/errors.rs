@@ -406,12 +406,11 @@ fn a_render_that_fails_halfway_leaves_no_frames() {
     let o = c.render_sized(("8", "8"), "8", &["--all-frames"], &lost);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{stderr}");
-    let mut names: Vec<_> = std::fs::read_dir(c.out())
-        .expect("read out")
-        .map(|e| e.expect("entry").file_name().into_string().expect("utf-8"))
-        .collect();
-    names.sort();
-    assert_eq!(names, ["frame_00000.png", "notes.txt"], "{stderr}");
+    assert_eq!(
+        names(&c.out()),
+        ["frame_00000.png", "notes.txt"],
+        "{stderr}"
+    );
     for (name, text) in old {
         assert_eq!(
             std::fs::read_to_string(c.out().join(name)).expect("read"),
@@ -422,11 +421,6 @@ fn a_render_that_fails_halfway_leaves_no_frames() {
     // directory.
     let o = c.render_sized(("8", "8"), "2", &["--all-frames"], &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let mut names: Vec<_> = std::fs::read_dir(c.out())
-        .expect("read out")
-        .map(|e| e.expect("entry").file_name().into_string().expect("utf-8"))
-        .collect();
-    names.sort();
     let want = [
         "frame_00000.exr",
         "frame_00000.png",
@@ -434,12 +428,22 @@ fn a_render_that_fails_halfway_leaves_no_frames() {
         "frame_00001.png",
         "notes.txt",
     ];
-    assert_eq!(names, want);
+    assert_eq!(names(&c.out()), want);
     let png = std::fs::read(c.out().join("frame_00000.png")).expect("read");
     assert!(
         png.starts_with(b"\x89PNG"),
         "the older frame is still there"
     );
+}
+
+/// The names in `dir`, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .expect("read dir")
+        .map(|e| e.expect("entry").file_name().into_string().expect("utf-8"))
+        .collect();
+    names.sort();
+    names
 }
 
 /// A name the frames need that a directory already has is found before anything is moved
@@ -450,7 +454,7 @@ fn a_directory_in_the_way_of_a_frame_is_named() {
     std::fs::create_dir_all(c.out().join("frame_00001.exr")).expect("mkdir");
     let o = c.render_sized(("8", "8"), "3", &["--all-frames"], &[]);
     c.expect_error(&o, &["frame_00001.exr", "a directory"]);
-    assert_eq!(std::fs::read_dir(c.out()).expect("read out").count(), 1);
+    assert_eq!(names(&c.out()), ["frame_00001.exr"]);
 }
 
 #[test]

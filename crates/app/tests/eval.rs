@@ -9,41 +9,45 @@ fn lum(path: &Path) -> Gray {
     Gray::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-#[test]
-fn tiny_eval_report_matches_recomputation_from_saved_frames() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("report");
-    let status = common::clean(Command::new(common::BIN))
+/// `blueshift GLOBAL eval` of `methods` on a static camera at 1 spp and 1 bounce, `frames`
+/// frames of `size` x `size`, against 64-spp references cached in `dir/cache`, reporting to
+/// `dir/report`.
+fn tiny_eval(dir: &Path, global: &[&str], methods: &str, frames: &str, size: &str) -> Command {
+    let mut cmd = common::clean(Command::new(common::BIN));
+    cmd.args(global)
         .args([
-            "--validation",
             "eval",
             "--methods",
-            "white,sort-retarget",
+            methods,
             "--spp",
             "1",
             "--camera",
             "static",
         ])
-        .args([
-            "--bounces",
-            "1",
-            "--frames",
-            "8",
-            "--width",
-            "64",
-            "--height",
-            "64",
-            "--reference-spp",
-            "64",
-        ])
+        .args(["--bounces", "1", "--frames", frames, "--width", size])
+        .args(["--height", size, "--reference-spp", "64"])
         .arg("--cache")
-        .arg(dir.path().join("cache"))
+        .arg(dir.join("cache"))
         .arg("--out")
-        .arg(&out)
-        .arg("--save-frames")
-        .env("XDG_RUNTIME_DIR", dir.path())
-        .status()
-        .unwrap();
+        .arg(dir.join("report"))
+        .env("XDG_RUNTIME_DIR", dir);
+    cmd
+}
+
+#[test]
+fn tiny_eval_report_matches_recomputation_from_saved_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let status = tiny_eval(
+        dir.path(),
+        &["--validation"],
+        "white,sort-retarget",
+        "8",
+        "64",
+    )
+    .arg("--save-frames")
+    .status()
+    .unwrap();
     assert!(status.success(), "eval failed: {status}");
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
@@ -92,32 +96,7 @@ fn unusable_reference_cache_files_are_rendered_again() {
     let dir = tempfile::tempdir().unwrap();
     let cache = dir.path().join("cache");
     let eval = || {
-        let o = common::clean(Command::new(common::BIN))
-            .args([
-                "eval",
-                "--methods",
-                "white",
-                "--spp",
-                "1",
-                "--camera",
-                "static",
-            ])
-            .args([
-                "--bounces",
-                "1",
-                "--frames",
-                "2",
-                "--width",
-                "8",
-                "--height",
-                "8",
-            ])
-            .args(["--reference-spp", "64"])
-            .arg("--cache")
-            .arg(&cache)
-            .arg("--out")
-            .arg(dir.path().join("report"))
-            .env("XDG_RUNTIME_DIR", dir.path())
+        let o = tiny_eval(dir.path(), &[], "white", "2", "8")
             .output()
             .unwrap();
         let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
