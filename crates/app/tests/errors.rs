@@ -557,8 +557,17 @@ fn bad_environments_and_lights() {
     assert!(max_radiance(&c) > 0.0, "the default environment lights it");
 
     // Black asked for is black: no white substitute, and the warning says why nothing emits.
+    let black = image::Rgb32FImage::from_raw(2, 1, vec![0.0; 6]).expect("2x1");
+    let mut exr = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgb32F(black)
+        .write_to(&mut exr, image::ImageFormat::OpenExr)
+        .expect("exr");
+    let black = c.write("black.exr", exr.get_ref());
+    let black = black.to_str().expect("utf-8");
+    let black_map = format!("--environment {black} is black");
     for (flags, why) in [
         (["--environment", "0,0,0"], "--environment 0,0,0 is black"),
+        (["--environment", black], &black_map),
         (
             ["--environment-intensity", "0"],
             "--environment-intensity 0 turns the environment off",
