@@ -9,7 +9,8 @@ use std::sync::Arc;
 pub struct LightArgs {
     /// Environment light: `R,G,B` (constant linear radiance) or an equirectangular `.hdr` /
     /// `.exr` map (centre facing -Z, +Y up). Default: the scene's own; a scene with no light
-    /// at all gets a uniform white environment (radiance 1) and a warning.
+    /// at all gets a uniform white environment (radiance 1) and a warning. A black one given
+    /// here (`0,0,0`) stays black.
     #[arg(long, value_name = "R,G,B|FILE")]
     pub environment: Option<String>,
     /// Turn the map about +Y by DEG degrees (counter-clockwise seen from above: at 90 the
@@ -62,7 +63,9 @@ impl LightArgs {
     }
 
     /// Checks the numbers, then applies the default environment (returning its warning),
-    /// intensity, rotation and sampling to a loaded scene.
+    /// intensity, rotation and sampling to a loaded scene. The default (white) lights only a
+    /// scene without light and without `--environment`: a black environment given is kept,
+    /// and if then nothing emits, the warning says so.
     pub fn apply(&self, scene: &mut Scene) -> Result<Option<String>> {
         let k = self.environment_intensity;
         if !(k.is_finite() && k >= 0.0) {
@@ -72,11 +75,28 @@ impl LightArgs {
         if !r.is_finite() {
             bail!("--environment-rotation must be a finite number of degrees, got {r}");
         }
-        let warning = scene.light_if_dark();
+        let default_light = match self.environment {
+            None => scene.light_if_dark(),
+            Some(_) => None,
+        };
         scene.scale_environment(k);
         scene.rotate_environment(r.to_radians());
         scene.environment_sampling = self.environment_sampling;
-        Ok(warning)
+        if scene.has_light() {
+            return Ok(default_light);
+        }
+        // Nothing emits because the flags said so: a black frame, and why.
+        let why = if k == 0.0 {
+            "--environment-intensity 0 turns the environment off".to_string()
+        } else {
+            let spec = self.environment.as_deref().unwrap_or_default();
+            format!("--environment {spec} is black")
+        };
+        Ok(Some(format!(
+            "{}: nothing emits light (no emissive material, no KHR_lights_punctual light, and \
+             {why}): the frames will be black",
+            scene.source.display()
+        )))
     }
 }
 

@@ -1,6 +1,7 @@
 //! Atomic image output: write to a temporary file in the same directory, then rename, so a
-//! failed or interrupted run never leaves a half-written file under the final name.
-use anyhow::{Context, Result};
+//! failed or interrupted run never leaves a half-written file under the final name; and
+//! [`Staged`] output, whose files appear only once the whole run has succeeded.
+use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
 
 /// The one atomic writer of the workspace (temporary file in the same directory, then
@@ -51,4 +52,65 @@ pub fn prepare_dir(dir: &Path) -> Result<OutputDir> {
         .with_context(|| format!("output directory {} is not writable", dir.display()))?;
     let _ = std::fs::remove_file(probe);
     Ok(guard)
+}
+
+/// The files of a run of several outputs (`render --all-frames`), written into a hidden
+/// temporary directory inside the output directory and moved into it by [`Staged::commit`]
+/// once the run has succeeded. A run that fails before (a lost device at frame 40) leaves the
+/// output directory as it found it: the temporary directory is removed, and so is the output
+/// directory if the run created it.
+#[must_use = "dropping it without commit() removes what was written"]
+#[derive(Debug)]
+pub struct Staged {
+    // Fields drop in this order: the temporary directory first, then (if it is empty by then
+    // and this run created it) the output directory.
+    tmp: tempfile::TempDir,
+    dir: PathBuf,
+    _out: OutputDir,
+}
+
+impl Staged {
+    /// [`prepare_dir`] `dir`, then a temporary directory inside it.
+    pub fn new(dir: &Path) -> Result<Self> {
+        let out = prepare_dir(dir)?;
+        let tmp = tempfile::Builder::new()
+            .prefix(".blueshift-partial-")
+            .tempdir_in(dir)
+            .with_context(|| format!("output directory {} is not writable", dir.display()))?;
+        Ok(Self {
+            tmp,
+            dir: dir.to_path_buf(),
+            _out: out,
+        })
+    }
+
+    /// Where the run writes its files (named as they will be in the output directory).
+    pub fn path(&self) -> &Path {
+        self.tmp.path()
+    }
+
+    /// Moves every file written into the output directory (replacing files of the same name).
+    /// A name a directory already has there is refused before anything is moved.
+    pub fn commit(self) -> Result<()> {
+        let mut names = Vec::new();
+        for e in std::fs::read_dir(self.tmp.path()).context("reading the temporary output")? {
+            names.push(e.context("reading the temporary output")?.file_name());
+        }
+        names.sort();
+        for n in &names {
+            let target = self.dir.join(n);
+            if std::fs::symlink_metadata(&target).is_ok_and(|m| m.is_dir()) {
+                bail!(
+                    "cannot write {}: a directory of that name is in the way",
+                    target.display()
+                );
+            }
+        }
+        for n in &names {
+            let target = self.dir.join(n);
+            std::fs::rename(self.tmp.path().join(n), &target)
+                .with_context(|| format!("cannot write {}", target.display()))?;
+        }
+        Ok(())
+    }
 }

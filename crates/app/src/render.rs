@@ -1,7 +1,7 @@
 //! `blueshift render`: headless frames of a scene to PNG (tonemapped) and EXR (linear raw).
 use crate::GpuOpts;
 use crate::args::MethodArgs;
-use crate::output::{exr_rgb32f, png_rgba8, prepare_dir, write_atomic};
+use crate::output::{Staged, exr_rgb32f, png_rgba8, write_atomic};
 use anyhow::{Result, bail};
 use blueshift_render::{CameraPath, Completed, Renderer};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -41,8 +41,9 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     let assets = args.method.scene.load_assets()?;
     let dev = gpu.device()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
-    // Only now that every input is known to be good: a failed run leaves no output directory.
-    let _out = prepare_dir(&args.out)?;
+    // Only now that every input is known to be good. The frames appear in the output
+    // directory only if the whole run succeeds: a failed run leaves it as it was (or absent).
+    let out = Staged::new(&args.out)?;
     let base = scene.camera_or_default();
     let path = path.clone().fit(&scene.bounds(), &base, view);
     let bar = ProgressBar::new(args.frames as u64);
@@ -58,7 +59,7 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
             bar.set_message(format!("trace {:.1} ms", c.stats.ms("trace")));
             bar.inc(1);
             if let Some(o) = &c.output {
-                write_frame(size, &args.out, c.stats.frame, &o.ldr, &o.estimate)?;
+                write_frame(size, out.path(), c.stats.frame, &o.ldr, &o.estimate)?;
             }
         }
         Ok(())
@@ -72,10 +73,11 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     finished(r.finish_frames()?)?;
     if !args.all_frames {
         let last = u64::from(args.frames - 1);
-        write_frame(size, &args.out, last, &r.read_ldr()?, &r.read_estimate()?)?;
+        write_frame(size, out.path(), last, &r.read_ldr()?, &r.read_estimate()?)?;
     }
     bar.finish();
     crate::check_validation(&dev)?;
+    out.commit()?;
     println!(
         "wrote {} to {}",
         if args.all_frames {

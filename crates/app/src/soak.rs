@@ -22,14 +22,16 @@ pub struct SoakArgs {
     /// G-buffer and the restarts of the running mean.
     #[arg(long, default_value = "static", value_parser = CameraPath::parse)]
     pub camera_path: CameraPath,
-    /// Check the seeds and memory every this many frames.
-    #[arg(long, default_value_t = 1000)]
-    pub check_every: u32,
+    /// Check the seeds and memory every this many frames [default: 1000, or --frames if
+    /// fewer].
+    #[arg(long)]
+    pub check_every: Option<u32>,
     /// Frames before the memory baseline is taken (allocator pools, lazy pipeline compiles);
     /// at most --check-every.
     #[arg(long, default_value_t = 100)]
     pub warmup: u32,
-    /// Allowed host RSS growth over the baseline, KiB.
+    /// Allowed host RSS growth over the baseline, KiB (any u64: 18446744073709551615 allows
+    /// any growth).
     #[arg(long, default_value_t = 8192)]
     pub rss_tolerance_kib: u64,
     /// Allowed growth of device memory in use over the baseline, bytes (allocations are exact).
@@ -45,6 +47,23 @@ pub fn rss_kib() -> Result<u64> {
         .find_map(|l| l.strip_prefix("VmRSS:"))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
         .ok_or_else(|| anyhow::anyhow!("no VmRSS line in /proc/self/status"))
+}
+
+/// `--check-every` when it is not given: this, or `--frames` if fewer.
+const DEFAULT_CHECK_EVERY: u32 = 1000;
+
+/// `now - base` as a signed number, saturating at the ends of i64 (never wraps).
+fn growth(now: u64, base: u64) -> i64 {
+    if now >= base {
+        i64::try_from(now - base).unwrap_or(i64::MAX)
+    } else {
+        i64::try_from(base - now).map_or(i64::MIN, |d| -d)
+    }
+}
+
+/// Whether `growth` exceeds `tolerance` (any u64, compared without conversion to i64).
+fn over(growth: i64, tolerance: u64) -> bool {
+    u64::try_from(growth).is_ok_and(|g| g > tolerance)
 }
 
 struct Baseline {
@@ -85,11 +104,15 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
     if !(1..=10_000_000).contains(&a.frames) {
         bail!("--frames {} is outside 1..=10000000", a.frames);
     }
-    if a.check_every == 0 || a.check_every > a.frames {
-        bail!("--check-every {} is outside 1..=--frames", a.check_every);
+    let check_every = a.check_every.unwrap_or(a.frames.min(DEFAULT_CHECK_EVERY));
+    if check_every == 0 || check_every > a.frames {
+        bail!(
+            "--check-every {check_every} is outside 1..=--frames ({})",
+            a.frames
+        );
     }
     // The baseline is taken at the latest at the first check.
-    let warmup = a.warmup.clamp(1, a.check_every);
+    let warmup = a.warmup.clamp(1, check_every);
     let cfg = a.method.config();
     if !cfg.method.sorts() {
         let permuting: Vec<&str> = Method::PRESETS
@@ -128,7 +151,7 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
         cfg.bounces,
         cfg.effective_block(),
         dev.info().name,
-        a.check_every
+        check_every
     );
     let mut base: Option<Baseline> = None;
     let mut window = Instant::now();
@@ -149,10 +172,10 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
             );
             base = Some(b);
         }
-        if f % a.check_every != 0 && f != a.frames {
+        if f % check_every != 0 && f != a.frames {
             continue;
         }
-        let ms = window.elapsed().as_secs_f64() * 1e3 / f64::from(a.check_every);
+        let ms = window.elapsed().as_secs_f64() * 1e3 / f64::from(check_every);
         let seeds = r.read_seeds()?;
         let permutation = is_permutation_of(&seeds, r.initial_seeds());
         let history = check_history(&r);
@@ -160,11 +183,8 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
         let now = Baseline::now(&dev)?;
         let (rss, device) = (now.rss_kib, now.device_bytes);
         let b = base.as_ref().unwrap_or(&now);
-        let (d_rss, d_dev) = (
-            rss as i64 - b.rss_kib as i64,
-            device as i64 - b.device_bytes as i64,
-        );
-        let d_alloc = now.allocations as i64 - b.allocations as i64;
+        let (d_rss, d_dev) = (growth(rss, b.rss_kib), growth(device, b.device_bytes));
+        let d_alloc = growth(now.allocations as u64, b.allocations as u64);
         worst = (worst.0.max(d_rss), worst.1.max(d_dev));
         println!(
             "frame {f:>8}: seeds {} ({} seeds), history {}, RSS {rss} KiB ({d_rss:+} KiB), \
@@ -188,7 +208,7 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
         if let Err(e) = history {
             bail!("frame {f}: {e}");
         }
-        if d_rss > a.rss_tolerance_kib as i64 {
+        if over(d_rss, a.rss_tolerance_kib) {
             bail!(
                 "frame {f}: host RSS grew by {d_rss} KiB since the warm-up (tolerance {} KiB)",
                 a.rss_tolerance_kib
@@ -197,7 +217,7 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
         if d_alloc > 0 {
             bail!("frame {f}: {d_alloc} more device allocations live than after the warm-up");
         }
-        if d_dev > a.device_tolerance as i64 {
+        if over(d_dev, a.device_tolerance) {
             bail!(
                 "frame {f}: device memory in use grew by {d_dev} bytes since the warm-up \
                  (tolerance {})",
@@ -216,4 +236,23 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
         worst.1
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn growth_and_tolerance_never_wrap() {
+        assert_eq!(growth(10, 4), 6);
+        assert_eq!(growth(4, 10), -6);
+        assert_eq!(growth(u64::MAX, 0), i64::MAX);
+        assert_eq!(growth(0, u64::MAX), i64::MIN);
+        assert!(over(9, 8));
+        assert!(!over(8, 8));
+        assert!(!over(-5, 0));
+        // Once `u64::MAX as i64` = -1: every growth, even 0, was over it.
+        assert!(!over(0, u64::MAX));
+        assert!(!over(i64::MAX, u64::MAX));
+    }
 }

@@ -381,6 +381,82 @@ fn device_lost_names_the_pass() {
     }
 }
 
+/// A run that fails halfway (the device lost from the fourth frame's trace on, after earlier
+/// frames were written) leaves nothing: not the frames before the failure, not the output
+/// directory it created; a directory that was there keeps its files as they were.
+#[test]
+fn a_render_that_fails_halfway_leaves_no_frames() {
+    let c = Case::new();
+    let lost = [("BLUESHIFT_TEST_DEVICE_LOST", "trace@3")];
+    let o = c.render_sized(("8", "8"), "8", &["--all-frames"], &lost);
+    c.expect_error(&o, &["device was lost while running pass 'trace'"]);
+    assert!(!c.out().exists(), "the output directory it created is left");
+    // The same run writing only the last frame.
+    let o = c.render_sized(("8", "8"), "8", &[], &lost);
+    c.expect_error(&o, &["device was lost while running pass 'trace'"]);
+    assert!(!c.out().exists(), "the output directory it created is left");
+
+    // An existing directory: an older frame and another file stay as they were, nothing is
+    // added (no frame, no temporary directory).
+    std::fs::create_dir(c.out()).expect("mkdir");
+    let old = [("frame_00000.png", "an older frame"), ("notes.txt", "mine")];
+    for (name, text) in old {
+        std::fs::write(c.out().join(name), text).expect("write");
+    }
+    let o = c.render_sized(("8", "8"), "8", &["--all-frames"], &lost);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert_eq!(
+        names(&c.out()),
+        ["frame_00000.png", "notes.txt"],
+        "{stderr}"
+    );
+    for (name, text) in old {
+        assert_eq!(
+            std::fs::read_to_string(c.out().join(name)).expect("read"),
+            text
+        );
+    }
+    // A successful run replaces the frame, keeps the other file, and leaves no temporary
+    // directory.
+    let o = c.render_sized(("8", "8"), "2", &["--all-frames"], &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let want = [
+        "frame_00000.exr",
+        "frame_00000.png",
+        "frame_00001.exr",
+        "frame_00001.png",
+        "notes.txt",
+    ];
+    assert_eq!(names(&c.out()), want);
+    let png = std::fs::read(c.out().join("frame_00000.png")).expect("read");
+    assert!(
+        png.starts_with(b"\x89PNG"),
+        "the older frame is still there"
+    );
+}
+
+/// The names in `dir`, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .expect("read dir")
+        .map(|e| e.expect("entry").file_name().into_string().expect("utf-8"))
+        .collect();
+    names.sort();
+    names
+}
+
+/// A name the frames need that a directory already has is found before anything is moved
+/// into the output directory.
+#[test]
+fn a_directory_in_the_way_of_a_frame_is_named() {
+    let c = Case::new();
+    std::fs::create_dir_all(c.out().join("frame_00001.exr")).expect("mkdir");
+    let o = c.render_sized(("8", "8"), "3", &["--all-frames"], &[]);
+    c.expect_error(&o, &["frame_00001.exr", "a directory"]);
+    assert_eq!(names(&c.out()), ["frame_00001.exr"]);
+}
+
 #[test]
 fn out_of_memory_names_the_resource_or_the_passes() {
     let c = Case::new();
@@ -414,6 +490,28 @@ fn bad_environments_and_lights() {
     let garbage = c.write("garbage.hdr", b"#?RADIANCE\nnot really\n");
     let o = c.render(&["--environment", garbage.to_str().expect("utf-8")], &[]);
     c.expect_error(&o, &["garbage.hdr", "cannot decode the environment map"]);
+    let empty = c.write("empty.hdr", b"");
+    let o = c.render(&["--environment", empty.to_str().expect("utf-8")], &[]);
+    c.expect_error(
+        &o,
+        &[
+            "--environment",
+            "empty.hdr: the environment map file is empty",
+        ],
+    );
+    // Over the map limit by its header (16384 x 8193): refused before anything is decoded.
+    let big = c.write(
+        "big.hdr",
+        b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8193 +X 16384\n",
+    );
+    let o = c.render(&["--environment", big.to_str().expect("utf-8")], &[]);
+    c.expect_error(
+        &o,
+        &[
+            "big.hdr: environment map is 16384x8193",
+            "at most 16384x8192 = 134217728 texels in all",
+        ],
+    );
     let png = c.write("sky.png", b"\x89PNG");
     let o = c.render(&["--environment", png.to_str().expect("utf-8")], &[]);
     c.expect_error(&o, &["sky.png", ".hdr (Radiance) or .exr (OpenEXR)"]);
@@ -455,4 +553,47 @@ fn bad_environments_and_lights() {
     assert!(stderr.contains("light 0 has intensity -5"), "{stderr}");
     assert!(stderr.contains("nothing emits light"), "{stderr}");
     assert_eq!(stderr.matches("nothing emits light").count(), 1, "{stderr}");
+    assert!(stderr.contains("uniform white environment"), "{stderr}");
+    assert!(max_radiance(&c) > 0.0, "the default environment lights it");
+
+    // Black asked for is black: no white substitute, and the warning says why nothing emits.
+    let black = image::Rgb32FImage::from_raw(2, 1, vec![0.0; 6]).expect("2x1");
+    let mut exr = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgb32F(black)
+        .write_to(&mut exr, image::ImageFormat::OpenExr)
+        .expect("exr");
+    let black = c.write("black.exr", exr.get_ref());
+    let black = black.to_str().expect("utf-8");
+    let black_map = format!("--environment {black} is black");
+    for (flags, why) in [
+        (["--environment", "0,0,0"], "--environment 0,0,0 is black"),
+        (["--environment", black], &black_map),
+        (
+            ["--environment-intensity", "0"],
+            "--environment-intensity 0 turns the environment off",
+        ),
+    ] {
+        let mut args = vec!["--scene", p.to_str().expect("utf-8")];
+        args.extend(flags);
+        let o = c.render(&args, &[]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{stderr}");
+        let warning = stderr
+            .lines()
+            .find(|l| l.contains("nothing emits light"))
+            .unwrap_or_else(|| panic!("{flags:?}: no warning in:\n{stderr}"));
+        assert!(warning.contains(why), "{warning}");
+        assert!(warning.ends_with("the frames will be black"), "{warning}");
+        assert!(!stderr.contains("white"), "{stderr}");
+        assert_eq!(max_radiance(&c), 0.0, "{flags:?}");
+    }
+}
+
+/// The largest channel of the last render's linear output (`out/frame_00000.exr`).
+fn max_radiance(c: &Case) -> f32 {
+    let exr = image::open(c.out().join("frame_00000.exr")).expect("the render's EXR");
+    exr.to_rgb32f()
+        .pixels()
+        .flat_map(|p| p.0)
+        .fold(0.0, f32::max)
 }

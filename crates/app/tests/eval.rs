@@ -9,41 +9,45 @@ fn lum(path: &Path) -> Gray {
     Gray::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-#[test]
-fn tiny_eval_report_matches_recomputation_from_saved_frames() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("report");
-    let status = common::clean(Command::new(common::BIN))
+/// `blueshift GLOBAL eval` of `methods` on a static camera at 1 spp and 1 bounce, `frames`
+/// frames of `size` x `size`, against 64-spp references cached in `dir/cache`, reporting to
+/// `dir/report`.
+fn tiny_eval(dir: &Path, global: &[&str], methods: &str, frames: &str, size: &str) -> Command {
+    let mut cmd = common::clean(Command::new(common::BIN));
+    cmd.args(global)
         .args([
-            "--validation",
             "eval",
             "--methods",
-            "white,sort-retarget",
+            methods,
             "--spp",
             "1",
             "--camera",
             "static",
         ])
-        .args([
-            "--bounces",
-            "1",
-            "--frames",
-            "8",
-            "--width",
-            "64",
-            "--height",
-            "64",
-            "--reference-spp",
-            "64",
-        ])
+        .args(["--bounces", "1", "--frames", frames, "--width", size])
+        .args(["--height", size, "--reference-spp", "64"])
         .arg("--cache")
-        .arg(dir.path().join("cache"))
+        .arg(dir.join("cache"))
         .arg("--out")
-        .arg(&out)
-        .arg("--save-frames")
-        .env("XDG_RUNTIME_DIR", dir.path())
-        .status()
-        .unwrap();
+        .arg(dir.join("report"))
+        .env("XDG_RUNTIME_DIR", dir);
+    cmd
+}
+
+#[test]
+fn tiny_eval_report_matches_recomputation_from_saved_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let status = tiny_eval(
+        dir.path(),
+        &["--validation"],
+        "white,sort-retarget",
+        "8",
+        "64",
+    )
+    .arg("--save-frames")
+    .status()
+    .unwrap();
     assert!(status.success(), "eval failed: {status}");
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
@@ -82,4 +86,67 @@ fn tiny_eval_report_matches_recomputation_from_saved_frames() {
         (white_ratio - 1.0).abs() < 1e-12,
         "white against itself: {white_ratio}"
     );
+}
+
+/// A cache file of the right name that is not the job's reference (another size, the same
+/// texel count in another shape, truncated, another key, ...) is a cache miss with a warning:
+/// the reference is rendered again and the file replaced, never a panic or a wrong image.
+#[test]
+fn unusable_reference_cache_files_are_rendered_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let cache = dir.path().join("cache");
+    let eval = || {
+        let o = tiny_eval(dir.path(), &[], "white", "2", "8")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(o.status.success(), "eval failed:\n{stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        stderr
+    };
+    let stderr = eval();
+    assert!(!stderr.contains("reference cache"), "{stderr}");
+    let files = common::files_under(&cache);
+    assert_eq!(files.len(), 1, "one static reference: {files:?}");
+    let file = &files[0];
+    let good = std::fs::read(file).unwrap();
+    // Magic, width, height, the 24-digit key, 8 x 8 texels of 4 f32.
+    assert_eq!(good.len(), 8 + 4 + 4 + 24 + 8 * 8 * 16);
+    let with_size = |w: u32, h: u32| {
+        let mut b = good.clone();
+        b[8..12].copy_from_slice(&w.to_le_bytes());
+        b[12..16].copy_from_slice(&h.to_le_bytes());
+        b
+    };
+    let mut other_key = good.clone();
+    other_key[16] ^= 1;
+    let mut longer = good.clone();
+    longer.extend([0; 16]);
+    for (bytes, why) in [
+        (with_size(65536, 65536), "declares a 65536x65536 image"),
+        (with_size(4, 16), "declares a 4x16 image"),
+        (good[..good.len() - 16].to_vec(), "(truncated?)"),
+        (good[..8].to_vec(), "fewer than the 40-byte header"),
+        (Vec::new(), "fewer than the 40-byte header"),
+        (other_key, "another cache key"),
+        (longer, "over the limit"),
+    ] {
+        std::fs::write(file, &bytes).unwrap();
+        let stderr = eval();
+        let warning = stderr
+            .lines()
+            .find(|l| l.starts_with("warning: reference cache"))
+            .unwrap_or_else(|| panic!("{why}: no warning in:\n{stderr}"));
+        assert!(warning.contains(why), "{why}: {warning}");
+        assert!(
+            warning.ends_with("rendering the reference again"),
+            "{warning}"
+        );
+        assert_eq!(std::fs::read(file).unwrap(), good, "{why}: not rewritten");
+        assert_eq!(
+            common::files_under(&cache).len(),
+            1,
+            "{why}: a temporary file left"
+        );
+    }
 }

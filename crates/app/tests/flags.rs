@@ -89,6 +89,13 @@ fn other_bad_arguments_are_errors_not_panics() {
         );
         c.expect_error(&o, &[&format!("{flag} {value} is outside 1..=1000")]);
     }
+    let o = c.run(&["soak", "--frames", "4", "--check-every", "5"], &[]);
+    c.expect_error(&o, &["--check-every 5 is outside 1..=--frames (4)"]);
+    let o = c.render(&["--camera-path", "static:5"], &[]);
+    c.expect_error(
+        &o,
+        &["camera path 'static:5': static takes no argument (got '5')"],
+    );
     let o = c.run(&["soak", "--camera-path", "/nonexistent/path.json"], &[]);
     c.expect_error(&o, &["/nonexistent/path.json", "orbit-view:DEG"]);
 }

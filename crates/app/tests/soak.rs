@@ -76,3 +76,26 @@ fn soak_500_frames_keeps_the_permutation_and_flat_memory() {
     }
     assert!(stdout.contains("soak passed: 500 frames"), "{stdout}");
 }
+
+/// A short soak without `--check-every` checks at its last frame (the default interval is
+/// 1000 frames or `--frames`, if fewer), and the largest tolerances (once wrapped to -1 in
+/// i64, failing every check) allow any growth.
+#[test]
+fn a_short_soak_needs_no_interval_and_any_tolerance_is_accepted() {
+    let max = u64::MAX.to_string();
+    let out = soak(&[
+        "--frames",
+        "4",
+        "--rss-tolerance-kib",
+        &max,
+        "--device-tolerance",
+        &max,
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "stdout:\n{stdout}\nstderr:\n{stderr}");
+    assert!(stdout.contains("check every 4"), "{stdout}");
+    let checks: Vec<&str> = stdout.lines().filter(|l| l.starts_with("frame ")).collect();
+    assert_eq!(checks.len(), 1, "{stdout}");
+    assert!(stdout.contains("soak passed: 4 frames"), "{stdout}");
+}

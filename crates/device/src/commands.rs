@@ -53,9 +53,10 @@ pub struct Recorder {
     pub(crate) passes: Vec<String>,
     pub(crate) open_pass: Option<usize>,
     pub(crate) recording: bool,
-    /// Fault hook ([`crate::faults::DEVICE_LOST`]`=PASS`): a submission containing pass PASS
-    /// reports a lost device, as if the GPU hung in PASS (markers stop after it).
-    pub(crate) lose_in_pass: Option<String>,
+    /// Fault hook ([`crate::faults::DEVICE_LOST`]`=PASS[@N]`): a submission containing pass
+    /// PASS (from the N-th such submission on) reports a lost device, as if the GPU hung in
+    /// PASS (markers stop after it).
+    pub(crate) lose_in_pass: Option<(String, u32)>,
     /// Fault hook ([`crate::faults::SUBMIT_OOM`]`=PASS`): a submission containing pass PASS
     /// reports running out of device memory, through the same error path as the driver's.
     pub(crate) oom_in_pass: Option<String>,
@@ -130,7 +131,7 @@ impl Recorder {
                 passes: Vec::new(),
                 open_pass: None,
                 recording: false,
-                lose_in_pass: crate::faults::var(crate::faults::DEVICE_LOST),
+                lose_in_pass: crate::faults::device_lost(),
                 oom_in_pass: crate::faults::var(crate::faults::SUBMIT_OOM),
                 markers_frozen: false,
                 written: HashSet::new(),
@@ -190,10 +191,19 @@ impl Recorder {
                 "more than {MAX_PASSES} passes in one submission"
             )));
         }
+        let lost_here = match &self.lose_in_pass {
+            Some((pass, from)) if pass == name => {
+                // Counted once per submission, when the pass first appears in it.
+                self.markers_frozen
+                    || (!self.passes.iter().any(|p| p == name)
+                        && crate::faults::count_lost_pass_submission() >= *from)
+            }
+            _ => false,
+        };
         self.passes.push(name.to_string());
         self.open_pass = Some(i as usize);
         let write_marker = !self.markers_frozen;
-        self.markers_frozen |= self.lose_in_pass.as_deref() == Some(name);
+        self.markers_frozen |= lost_here;
         let d = self.dev.raw();
         // SAFETY: recording; the marker buffer is TRANSFER_DST. The markers are outside the
         // barrier bookkeeping: a diagnostic must not order the passes.

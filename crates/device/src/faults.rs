@@ -3,7 +3,9 @@
 //! in only with the `fault-injection` feature, which the workspace's tests turn on and a
 //! release build of the binary leaves off: there these variables are ignored.
 
-/// `=PASS`: a submission containing pass PASS reports a lost device.
+/// `=PASS`: a submission containing pass PASS reports a lost device. `=PASS@N`: only from the
+/// N-th such submission of the process on (counted from 0), so a run fails halfway (a later
+/// frame).
 pub const DEVICE_LOST: &str = "BLUESHIFT_TEST_DEVICE_LOST";
 /// `=PASS`: a submission containing pass PASS reports running out of device memory.
 pub const SUBMIT_OOM: &str = "BLUESHIFT_TEST_SUBMIT_OOM";
@@ -23,4 +25,22 @@ pub fn var(name: &str) -> Option<String> {
         return None;
     }
     std::env::var(name).ok().filter(|v| !v.is_empty())
+}
+
+/// The pass and the first submission (counted from 0) that [`DEVICE_LOST`] loses the device
+/// in: `PASS` or `PASS@N`.
+pub(crate) fn device_lost() -> Option<(String, u32)> {
+    let v = var(DEVICE_LOST)?;
+    Some(match v.rsplit_once('@') {
+        Some((pass, n)) => (pass.to_string(), n.parse().unwrap_or(0)),
+        None => (v, 0),
+    })
+}
+
+/// Counts the submissions (of every recorder) that contain the pass of [`DEVICE_LOST`]:
+/// returns how many came before this one.
+pub(crate) fn count_lost_pass_submission() -> u32 {
+    use std::sync::atomic::{AtomicU32, Ordering};
+    static SUBMISSIONS: AtomicU32 = AtomicU32::new(0);
+    SUBMISSIONS.fetch_add(1, Ordering::Relaxed)
 }

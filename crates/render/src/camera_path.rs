@@ -97,7 +97,13 @@ impl CameraPath {
             })
         };
         match name {
-            "static" => Ok(CameraPath::Static),
+            "static" => match arg {
+                None => Ok(CameraPath::Static),
+                Some(a) => Err(format!(
+                    "camera path '{spec}': static takes no argument (got '{a}'): a static \
+                     camera does not move"
+                )),
+            },
             "pan" => Ok(CameraPath::Pan {
                 px_per_frame: number(1.0)?,
             }),

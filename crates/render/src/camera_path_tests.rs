@@ -18,6 +18,10 @@ fn presets_parse() {
         CameraPath::Pan { px_per_frame: 8.0 }
     );
     assert!(CameraPath::parse("pan:abc").is_err());
+    for bad in ["static:5", "static:"] {
+        let e = CameraPath::parse(bad).unwrap_err();
+        assert!(e.contains("static takes no argument"), "{bad}: {e}");
+    }
     assert_eq!(
         CameraPath::parse("swing:2").unwrap(),
         CameraPath::Swing {

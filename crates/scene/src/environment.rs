@@ -21,6 +21,13 @@ use std::path::{Path, PathBuf};
 
 /// Largest map side accepted (a 16k x 8k map is 2 GiB of texels on the device already).
 pub const MAX_ENV_SIDE: u32 = 16384;
+/// Most texels a map may have: 16384 x 8192, the largest equirectangular map (twice as wide
+/// as high) within [`MAX_ENV_SIDE`].
+pub const MAX_ENV_TEXELS: u64 = MAX_ENV_SIDE as u64 * (MAX_ENV_SIDE as u64 / 2);
+/// What the image decoder may allocate for a map's pixels: 4 f32 channels (OpenEXR RGBA, the
+/// most any decoder asks for) of the largest map. (The `image` crate's default, 512 MiB,
+/// refused a 16384 x 4096 `.hdr` as "Memory limit exceeded".)
+const MAX_ENV_DECODE_BYTES: u64 = MAX_ENV_TEXELS * 16;
 
 /// How next-event estimation samples an environment map.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -69,6 +76,8 @@ pub struct EnvMap {
 pub enum EnvMapError {
     #[error("{}: environment map not found", path.display())]
     NotFound { path: PathBuf },
+    #[error("{}: the environment map file is empty", path.display())]
+    Empty { path: PathBuf },
     #[error("{}: cannot read the environment map: {source}", path.display())]
     Io {
         path: PathBuf,
@@ -83,9 +92,10 @@ pub enum EnvMapError {
     #[error("{}: cannot decode the environment map: {message}", path.display())]
     Decode { path: PathBuf, message: String },
     #[error(
-        "{}: environment map is {width}x{height}; it must be at least 2x1 and at most \
-         {MAX_ENV_SIDE} texels a side",
-        path.display()
+        "{}: environment map is {width}x{height}; it must be at least 2x1, at most \
+         {MAX_ENV_SIDE} texels a side and at most {MAX_ENV_SIDE}x{} = {MAX_ENV_TEXELS} texels \
+         in all",
+        path.display(), MAX_ENV_SIDE / 2
     )]
     Size {
         path: PathBuf,
@@ -95,7 +105,31 @@ pub enum EnvMapError {
 }
 
 /// The largest environment map file read: a 16384 x 8192 map of 32-bit float RGBA.
-const MAX_MAP_FILE_BYTES: u64 = 16384 * 8192 * 16;
+const MAX_MAP_FILE_BYTES: u64 = MAX_ENV_TEXELS * 16;
+
+/// A map of `width x height` texels is within the limits: 2x1 to [`MAX_ENV_SIDE`] a side,
+/// at most [`MAX_ENV_TEXELS`] in all.
+fn check_size(path: &Path, width: u32, height: u32) -> Result<(), EnvMapError> {
+    let sides = (2..=MAX_ENV_SIDE).contains(&width) && (1..=MAX_ENV_SIDE).contains(&height);
+    if sides && u64::from(width) * u64::from(height) <= MAX_ENV_TEXELS {
+        return Ok(());
+    }
+    Err(EnvMapError::Size {
+        path: path.to_path_buf(),
+        width,
+        height,
+    })
+}
+
+/// The decoder's limits for a map within [`check_size`]: its sides, and memory for the
+/// pixels of the largest map ([`MAX_ENV_DECODE_BYTES`]).
+fn decode_limits() -> image::Limits {
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_ENV_SIDE);
+    limits.max_image_height = Some(MAX_ENV_SIDE);
+    limits.max_alloc = Some(MAX_ENV_DECODE_BYTES);
+    limits
+}
 
 impl EnvMap {
     /// Reads an equirectangular `.hdr` or `.exr` file (a regular file: a FIFO or device is
@@ -129,27 +163,41 @@ impl EnvMap {
                 });
             }
         };
+        if bytes.is_empty() {
+            return Err(EnvMapError::Empty {
+                path: path.to_path_buf(),
+            });
+        }
         let decode = |message: String| EnvMapError::Decode {
             path: path.to_path_buf(),
             message,
         };
-        let mut reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
-        let mut limits = image::Limits::default();
-        limits.max_image_width = Some(MAX_ENV_SIDE);
-        limits.max_image_height = Some(MAX_ENV_SIDE);
-        reader.limits(limits);
+        let reader = |limits: image::Limits| {
+            let mut r = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
+            r.limits(limits);
+            r
+        };
+        // The size from the header, checked against the map limits before anything is
+        // decoded (and named as they are, not as a decoder's "limit exceeded").
         // The decoders are third-party code fed untrusted bytes: a panic is a decode error.
-        let decoded = std::panic::catch_unwind(move || reader.decode())
+        let (width, height) =
+            std::panic::catch_unwind(|| reader(image::Limits::no_limits()).into_dimensions())
+                .map_err(|_| decode("the decoder failed on malformed data".into()))?
+                .map_err(|e| decode(e.to_string()))?;
+        check_size(path, width, height)?;
+        let decoded = std::panic::catch_unwind(|| reader(decode_limits()).decode())
             .map_err(|_| decode("the decoder failed on malformed data".into()))?
-            .map_err(|e| decode(e.to_string()))?;
+            .map_err(|e| match e {
+                image::ImageError::Limits(l) => decode(format!(
+                    "{l} (the limit is {} MiB, what a {MAX_ENV_SIDE}x{} RGBA float map needs)",
+                    MAX_ENV_DECODE_BYTES >> 20,
+                    MAX_ENV_SIDE / 2
+                )),
+                e => decode(e.to_string()),
+            })?;
+        // The header's size again, as decoded.
+        check_size(path, decoded.width(), decoded.height())?;
         let (width, height) = (decoded.width(), decoded.height());
-        if width < 2 || height < 1 || width > MAX_ENV_SIDE || height > MAX_ENV_SIDE {
-            return Err(EnvMapError::Size {
-                path: path.to_path_buf(),
-                width,
-                height,
-            });
-        }
         let rgb = decoded.into_rgb32f();
         let mut bad = 0usize;
         let texels = rgb
@@ -479,5 +527,88 @@ mod tests {
         let (map, warn) = EnvMap::from_bytes(Path::new("m.exr"), bytes.get_ref()).expect("decodes");
         assert_eq!(map.texels, vec![Vec3::new(1.0, 2.0, 3.0), Vec3::ZERO]);
         assert!(warn.expect("warning").contains("1 environment map texels"));
+        let e = EnvMap::from_bytes(Path::new("e.hdr"), b"").unwrap_err();
+        assert_eq!(e.to_string(), "e.hdr: the environment map file is empty");
+    }
+
+    /// A Radiance header declaring `width x height`, and no pixels.
+    fn hdr_header(width: u32, height: u32) -> Vec<u8> {
+        format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n").into_bytes()
+    }
+
+    #[test]
+    fn the_size_limit_is_checked_from_the_header_and_named() {
+        for (w, h) in [(16384, 8193), (16384, 16384), (16385, 1), (1, 1)] {
+            let e = EnvMap::from_bytes(Path::new("big.hdr"), &hdr_header(w, h)).unwrap_err();
+            assert!(matches!(e, EnvMapError::Size { .. }), "{w}x{h}: {e}");
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "big.hdr: environment map is {w}x{h}; it must be at least 2x1, at most 16384 \
+                     texels a side and at most 16384x8192 = 134217728 texels in all"
+                )
+            );
+        }
+        // Within the limits, a header without pixels is a truncated file, not too large.
+        let e = EnvMap::from_bytes(Path::new("small.hdr"), &hdr_header(64, 32)).unwrap_err();
+        assert!(matches!(e, EnvMapError::Decode { .. }), "{e}");
+        // A real .hdr decodes (the size read from the header first, then the pixels).
+        let img = image::Rgb32FImage::from_fn(4, 2, |x, y| image::Rgb([x as f32, y as f32, 1.0]));
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image::DynamicImage::ImageRgb32F(img)
+            .write_to(&mut bytes, image::ImageFormat::Hdr)
+            .expect("hdr");
+        let (map, warn) = EnvMap::from_bytes(Path::new("m.hdr"), bytes.get_ref()).expect("decodes");
+        assert_eq!((map.width, map.height, warn), (4, 2, None));
+        assert_eq!(map.texels[5], Vec3::new(1.0, 1.0, 1.0));
+    }
+
+    /// A real 16384 x 4096 `.hdr` (4 MiB run-length encoded, 1.6 GB peak RSS decoding): the map
+    /// the `image` crate's default limit refused. Too heavy for every run:
+    /// `cargo test -p blueshift-scene --lib -- --ignored`.
+    #[test]
+    #[ignore = "needs about 1.6 GB of memory"]
+    fn a_16384_by_4096_hdr_decodes() {
+        let (w, h) = (16384u32, 4096u32);
+        let mut bytes = hdr_header(w, h);
+        // Each scanline: the RLE marker, then per channel (R, G, B, exponent) runs of at most
+        // 127 equal bytes: texel (128, 128, 128) x 2^(129 - 136).
+        for _ in 0..h {
+            bytes.extend([2, 2, (w >> 8) as u8, (w & 0xff) as u8]);
+            for value in [128u8, 128, 128, 129] {
+                let mut left = w;
+                while left > 0 {
+                    let n = left.min(127);
+                    bytes.extend([128 + n as u8, value]);
+                    left -= n;
+                }
+            }
+        }
+        let (map, warn) = EnvMap::from_bytes(Path::new("wide.hdr"), &bytes).expect("decodes");
+        assert_eq!((map.width, map.height, warn), (w, h, None));
+        let first = map.texels[0];
+        assert!(first.min_element() > 0.0 && first.is_finite(), "{first}");
+        assert!(map.texels.iter().all(|t| *t == first));
+    }
+
+    /// Decoding a map this large takes GiBs, so the decoder's memory limit is checked by its
+    /// arithmetic: every map within the size limit may be decoded, as Radiance (RGB f32) or
+    /// OpenEXR (up to RGBA f32), 16384 x 4096 included, which the `image` crate's default
+    /// limit refused ("Memory limit exceeded").
+    #[test]
+    fn the_decoder_may_allocate_what_any_map_within_the_limit_needs() {
+        for (w, h) in [(16384, 8192), (16384, 4096), (8192, 16384), (2, 1)] {
+            check_size(Path::new("m.hdr"), w, h).expect("within the size limit");
+            for bytes_per_texel in [12, 16] {
+                let bytes = u64::from(w) * u64::from(h) * bytes_per_texel;
+                decode_limits()
+                    .reserve(bytes)
+                    .unwrap_or_else(|e| panic!("{w}x{h}x{bytes_per_texel}: {e}"));
+            }
+        }
+        assert!(image::Limits::default().reserve(16384 * 4096 * 12).is_err());
+        assert!(decode_limits().reserve(MAX_ENV_DECODE_BYTES + 1).is_err());
+        assert!(decode_limits().check_dimensions(16384, 8192).is_ok());
+        assert!(decode_limits().check_dimensions(16385, 1).is_err());
     }
 }

@@ -35,8 +35,8 @@ pub use blueshift_assets::files::{open_regular, read_regular};
 pub use bvh::Bvh;
 pub use camera::{Camera, CameraBasis};
 pub use environment::{
-    EnvMap, EnvMapError, EnvSampling, EnvTables, MAX_ENV_SIDE, env_density, env_direction,
-    env_texel_of, env_uv,
+    EnvMap, EnvMapError, EnvSampling, EnvTables, MAX_ENV_SIDE, MAX_ENV_TEXELS, env_density,
+    env_direction, env_texel_of, env_uv,
 };
 pub use error::SceneError;
 pub use geometry::Aabb;

@@ -1,6 +1,8 @@
 //! Reference images: Owen-scrambled Sobol at >= 1024 spp, cached on disk under a key of scene,
 //! camera path, resolution, bounces, spp, primary-ray placement (jittered or pixel centres) and
-//! the code of the path tracer variants that render references (the renderer version).
+//! the code of the path tracer variants that render references (the renderer version). A cache
+//! file whose header does not describe exactly the job's reference (size, key, length) is a
+//! miss with a warning: the reference is rendered again and the file replaced atomically.
 use crate::output::write_atomic;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::luminance;
@@ -16,7 +18,8 @@ use std::sync::OnceLock;
 
 /// Samples per pixel per reference frame; references accumulate `spp / REF_CHUNK` frames.
 const REF_CHUNK: u32 = 64;
-const MAGIC: &[u8; 8] = b"BSREF01\0";
+/// Version 2 added the key to the header.
+const MAGIC: &[u8; 8] = b"BSREF02\0";
 
 /// Linear RGB + luminance per pixel.
 #[derive(Debug, Clone)]
@@ -128,33 +131,92 @@ fn key(job: &RefJob, what: &str) -> String {
     ));
     h.finalize()
         .iter()
-        .take(12)
+        .take(KEY_LEN / 2)
         .map(|b| format!("{b:02x}"))
         .collect()
 }
 
-fn load(path: &Path) -> Option<Image> {
-    let bytes = std::fs::read(path).ok()?;
-    if bytes.len() < 16 || &bytes[..8] != MAGIC {
-        return None;
+/// Bytes of a cache file: [`MAGIC`], width and height (u32 little-endian), the cache key
+/// ([`KEY_LEN`] ASCII hex digits: the file's own name), then width x height texels of 4 f32.
+const HEADER_LEN: usize = 8 + 4 + 4 + KEY_LEN;
+/// Hex digits of a cache key ([`key`]).
+const KEY_LEN: usize = 24;
+
+/// The length of the cache file of a `w x h` reference; `None` if that does not fit a u64.
+fn file_len(w: u32, h: u32) -> Option<u64> {
+    u64::from(w)
+        .checked_mul(u64::from(h))?
+        .checked_mul(16)?
+        .checked_add(HEADER_LEN as u64)
+}
+
+/// What the cache holds for one reference.
+#[derive(Debug)]
+enum Cached {
+    Hit(Image),
+    Missing,
+    /// A file that is not this job's reference (truncated, another size, another version or
+    /// key, not a regular file): why, for the warning. It is rendered again and replaced.
+    Unusable(String),
+}
+
+/// Reads the cached `w x h` reference of cache key `key` from `path`. The header must
+/// describe exactly this job's reference; a file of any other length is not read in full.
+fn load(path: &Path, key: &str, w: u32, h: u32) -> Cached {
+    let Some(want) = file_len(w, h) else {
+        return Cached::Unusable(format!("a {w}x{h} reference does not fit in a file"));
+    };
+    // A regular file of at most the expected length: a FIFO would block, a huge file cost.
+    match blueshift_assets::files::read_regular(path, want) {
+        Ok(bytes) => parse(&bytes, key, w, h, want).map_or_else(Cached::Unusable, Cached::Hit),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Cached::Missing,
+        Err(e) => Cached::Unusable(e.to_string()),
     }
-    let w = u32::from_le_bytes(bytes[8..12].try_into().ok()?);
-    let h = u32::from_le_bytes(bytes[12..16].try_into().ok()?);
-    let body = &bytes[16..];
-    if body.len() != (w * h) as usize * 16 {
-        return None;
+}
+
+/// The reference in `bytes` (a whole cache file) if its header matches the job.
+fn parse(bytes: &[u8], key: &str, w: u32, h: u32, want: u64) -> Result<Image, String> {
+    let Some(header) = bytes.get(..HEADER_LEN) else {
+        return Err(format!(
+            "it has {} bytes, fewer than the {HEADER_LEN}-byte header",
+            bytes.len()
+        ));
+    };
+    let (magic, rest) = header.split_at(MAGIC.len());
+    if magic != MAGIC {
+        return Err(
+            "it is not a reference cache file of this version (no BSREF02 header)".to_string(),
+        );
     }
-    Some(Image {
+    let (size, file_key) = rest.split_at(8);
+    let word = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+    let (fw, fh) = (word(&size[..4]), word(&size[4..]));
+    if (fw, fh) != (w, h) {
+        return Err(format!(
+            "its header declares a {fw}x{fh} image, but this reference is {w}x{h}"
+        ));
+    }
+    if file_key != key.as_bytes() {
+        return Err("its header names another cache key".to_string());
+    }
+    if bytes.len() as u64 != want {
+        return Err(format!(
+            "it has {} bytes, but this {w}x{h} reference needs {want} (truncated?)",
+            bytes.len()
+        ));
+    }
+    Ok(Image {
         w,
         h,
-        px: bytemuck::pod_collect_to_vec(body),
+        px: bytemuck::pod_collect_to_vec(&bytes[HEADER_LEN..]),
     })
 }
 
-fn save(path: &Path, img: &Image) -> Result<()> {
+fn save(path: &Path, key: &str, img: &Image) -> Result<()> {
     let mut bytes = MAGIC.to_vec();
     bytes.extend(img.w.to_le_bytes());
     bytes.extend(img.h.to_le_bytes());
+    bytes.extend(key.as_bytes());
     bytes.extend(bytemuck::cast_slice::<[f32; 4], u8>(&img.px));
     Ok(write_atomic(path, &bytes)?)
 }
@@ -169,13 +231,20 @@ fn render_one(
     bar: &ProgressBar,
 ) -> Result<Image> {
     let (_, base) = job.path.view_window(job.frames, job.width, job.height);
-    let file: PathBuf = job.cache.join(format!(
-        "{}.ref",
-        key(job, &format!("{what}|w{w}|f{frame}|view{view:?}{base:?}"))
-    ));
-    if let Some(img) = load(&file) {
-        bar.inc(job.spp as u64);
-        return Ok(img);
+    let key = key(job, &format!("{what}|w{w}|f{frame}|view{view:?}{base:?}"));
+    let file: PathBuf = job.cache.join(format!("{key}.ref"));
+    match load(&file, &key, w, job.height) {
+        Cached::Hit(img) => {
+            bar.inc(job.spp as u64);
+            return Ok(img);
+        }
+        Cached::Missing => {}
+        Cached::Unusable(why) => bar.suspend(|| {
+            eprintln!(
+                "warning: reference cache {}: {why}; rendering the reference again",
+                file.display()
+            );
+        }),
     }
     let cfg = RenderConfig {
         spp: REF_CHUNK.min(job.spp),
@@ -202,7 +271,7 @@ fn render_one(
     };
     std::fs::create_dir_all(job.cache)
         .with_context(|| format!("creating cache {}", job.cache.display()))?;
-    save(&file, &img)?;
+    save(&file, &key, &img)?;
     Ok(img)
 }
 
@@ -255,4 +324,61 @@ pub fn references(job: &RefJob) -> Result<References> {
             References::PerFrame(v)
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cache file as [`save`] writes it, with the header's size replaced by `(w, h)`.
+    fn file(key: &str, (w, h): (u32, u32), texels: usize) -> Vec<u8> {
+        let img = Image {
+            w,
+            h,
+            px: vec![[0.5; 4]; texels],
+        };
+        let dir = tempfile::tempdir().expect("tempdir");
+        let p = dir.path().join("x.ref");
+        save(&p, key, &img).expect("save");
+        std::fs::read(p).expect("read")
+    }
+
+    #[test]
+    fn a_cache_file_is_used_only_if_its_header_describes_the_job() {
+        let key = "0123456789abcdef01234567";
+        assert_eq!(key.len(), KEY_LEN);
+        let want = file_len(8, 8).expect("fits");
+        let good = file(key, (8, 8), 64);
+        assert_eq!(good.len() as u64, want);
+        let img = parse(&good, key, 8, 8, want).expect("a hit");
+        assert_eq!((img.w, img.h, img.px.len()), (8, 8, 64));
+        // Width x height overflows u32 (once a panic), the same texel count in another shape
+        // (once accepted), another key, a truncated body, a header cut short.
+        let reasons = [
+            (
+                file(key, (65536, 65536), 64),
+                "declares a 65536x65536 image",
+            ),
+            (file(key, (4, 16), 64), "declares a 4x16 image"),
+            (
+                file("fedcba9876543210fedcba98", (8, 8), 64),
+                "another cache key",
+            ),
+            (good[..good.len() - 1].to_vec(), "(truncated?)"),
+            (good[..HEADER_LEN - 1].to_vec(), "fewer than the"),
+            (b"BSREF01\0".to_vec(), "fewer than the"),
+        ];
+        for (bytes, reason) in reasons {
+            let e = parse(&bytes, key, 8, 8, want).expect_err(reason);
+            assert!(e.contains(reason), "{reason}: {e}");
+        }
+        let mut old = good.clone();
+        old[..8].copy_from_slice(b"BSREF01\0");
+        let e = parse(&old, key, 8, 8, want).expect_err("old version");
+        assert!(
+            e.contains("not a reference cache file of this version"),
+            "{e}"
+        );
+        assert_eq!(file_len(u32::MAX, u32::MAX), None);
+    }
 }
