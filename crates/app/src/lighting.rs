@@ -80,6 +80,21 @@ impl LightArgs {
             Some(_) => None,
         };
         scene.scale_environment(k);
+        // Radiance past f32's range is infinite, and an infinite light renders black.
+        let map_finite = scene
+            .environment_map
+            .as_ref()
+            .is_none_or(|m| m.texels.iter().all(|t| t.is_finite()));
+        if !scene.environment.is_finite() || !map_finite {
+            let what = match self.environment.as_deref() {
+                Some(spec) => format!("--environment {spec}"),
+                None => "the scene's environment".to_string(),
+            };
+            bail!(
+                "{what} times --environment-intensity {k} overflows f32 (infinite radiance \
+                 renders black); scale the environment down"
+            );
+        }
         scene.rotate_environment(r.to_radians());
         scene.environment_sampling = self.environment_sampling;
         if scene.has_light() {

@@ -522,6 +522,21 @@ fn bad_environments_and_lights() {
         &o,
         &["--environment-intensity must be a finite number >= 0"],
     );
+    // Finite numbers whose product is not: infinite radiance would render black.
+    let big = [
+        "--environment",
+        "3e38,3e38,3e38",
+        "--environment-intensity",
+        "10",
+    ];
+    let o = c.render(&big, &[]);
+    c.expect_error(
+        &o,
+        &[
+            "--environment 3e38,3e38,3e38 times --environment-intensity 10 overflows f32",
+            "scale the environment down",
+        ],
+    );
 
     // NaN and negative texels: a warning, and they count as black.
     let img =
