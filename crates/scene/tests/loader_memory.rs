@@ -83,7 +83,7 @@ fn load(bytes: &[u8]) -> (Scene, usize) {
 
 #[test]
 fn the_sparse_positions_bomb_costs_what_the_file_holds() {
-    // shared/inputs/sparse_positions_bomb.gltf: 605 bytes, a sparse-only POSITION accessor of
+    // tests/data/sparse_positions_bomb.gltf: 605 bytes, a sparse-only POSITION accessor of
     // 50,331,648 vertices (the budget's limit) with 3 stored: it took 1.35 GB to load.
     let (scene, peak) = load(include_bytes!("data/sparse_positions_bomb.gltf"));
     assert!(peak < MIB, "{peak} bytes");

@@ -63,7 +63,7 @@ fn mkfifo(path: &Path) {
 
 #[test]
 fn the_outside_uri_seed_is_refused_naming_the_uri() {
-    // shared/inputs/uri_outside_scene_dir.gltf: its buffer is `../../(...)/etc/passwd`, once
+    // tests/data/uri_outside_scene_dir.gltf: its buffer is `../../(...)/etc/passwd`, once
     // read and rendered as geometry.
     let dir = tmp();
     let deep = dir.path().join("a/b");
@@ -274,7 +274,7 @@ fn empty_and_truncated_buffers_say_so() {
 
 #[test]
 fn a_light_whose_radiance_overflows_is_an_error() {
-    // shared/inputs/light_overflow_black.gltf: colour 1e38 x intensity 1e38 rendered black.
+    // tests/data/light_overflow_black.gltf: colour 1e38 x intensity 1e38 rendered black.
     let dir = tmp();
     let seed = include_bytes!("data/light_overflow_black.gltf");
     let p = write(dir.path(), "light.gltf", seed);
