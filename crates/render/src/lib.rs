@@ -27,6 +27,7 @@ mod method_spec;
 mod motion;
 mod pairs_gate;
 mod passes;
+mod permutation;
 mod readback;
 mod recipe;
 mod resources;

@@ -180,3 +180,18 @@ pub fn load(path: &Path) -> Result<Scene, blueshift_scene::SceneError> {
         },
     )
 }
+
+/// How many triangles the scene at `p` has; it must load (with `options`, else quietly).
+pub fn triangles(p: &Path, options: Option<&blueshift_scene::LoadOptions>) -> usize {
+    let scene = match options {
+        Some(o) => Scene::load_with(p, o),
+        None => load(p),
+    };
+    scene.expect("the scene loads").triangles.len()
+}
+
+/// The one-quad scene's JSON, its buffer embedded.
+pub fn quad_doc() -> Value {
+    let b = one_quad();
+    b.json(Some(embedded_uri(b.bin())))
+}
