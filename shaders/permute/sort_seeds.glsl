@@ -22,7 +22,8 @@
 //   SORT_CLASSES  1: rank within the classes of classify_pixels; 0: one class per block
 //   SORT_HISTORY  1: rank key minus history mean (history_key); 0: the raw key
 //   SORT_PAIRS    1: antithetic pairs where SortParams::pairs asks for them; 0: the mask only
-//   SORT_SKEW     1: count skewed classes where SortParams::count_skew asks for it
+//   SORT_SKEW     1: count skewed classes where SortParams::count_skew asks for it, and
+//                 take the pairs gate's choice where SortParams::pairs says so
 //   SORT_SLOTS    16: blocks up to 4x4; 64: up to 8x8
 //   SORT_RETARGET 1: then retarget: mask texels carry D (pack_mask_moves), blocks cover the
 //                 padded screen, whose off-screen pixels keep their place before the move
@@ -101,6 +102,10 @@ layout(set = 0, binding = 4, scalar) readonly buffer History { float hist_mean[]
 // (skewed classes, classes counted), summed over blocks with SortParams::count_skew
 // (count_skewed_classes); zeroed by the host.
 layout(set = 0, binding = 5, scalar) buffer Stats { uint sort_stats[2]; };
+#if SORT_PAIRS
+// The pairs gate (pairs_gate.comp) as the frames before left it: (share, counted at all).
+layout(set = 0, binding = 10, scalar) readonly buffer Gate { uint pairs_gate[2]; };
+#endif
 #endif
 #if SORT_CYCLE
 // (seed, key bits) per phase slot and visible pixel: CYCLE_FRAMES * width * height.
@@ -146,7 +151,7 @@ uint64_t mask_slot_key(bool valid, uint cls, uint key, uint s, uint d) {
 // the upper half, in the reverse order of its partner's mask key (partner: the class's pixel
 // to the left, else right, above, below), so neighbours hold opposite errors. Mask keys are
 // u16 ranks, below 0x10000.
-void pair_thin_classes(ivec2 origin, bool valid[SORT_SLOTS], uint cls[SORT_SLOTS],
+void pair_thin_classes(ivec2 origin, bool valid[SORT_SLOTS], uint cls[SORT_SLOTS], uint pairs,
                        inout uint mkey[SORT_SLOTS]) {
     uint B = p.block;
     uvec2 lo[64], hi[64];  // bounding box of each class (classes from 63 up merged)
@@ -170,7 +175,7 @@ void pair_thin_classes(ivec2 origin, bool valid[SORT_SLOTS], uint cls[SORT_SLOTS
     uint key[SORT_SLOTS];
 #define PAIR_KEY(s) { \
         uint c = min(cls[s], 63u); \
-        bool thin = p.pairs == 2u || hi[c].x - lo[c].x < 2u || hi[c].y - lo[c].y < 2u; \
+        bool thin = pairs == 2u || hi[c].x - lo[c].x < 2u || hi[c].y - lo[c].y < 2u; \
         uint colour = (uint(origin.x + origin.y) + SX(s) + SY(s) + p.phase) & 1u; \
         uint partner = mkey[s]; \
         PARTNER(s, 0, 1) PARTNER(s, 0, -1) PARTNER(s, 1, 0) PARTNER(s, -1, 0) \
@@ -380,7 +385,14 @@ void main() {
     }
 #endif
 #if SORT_PAIRS
-    if (p.pairs != 0u) pair_thin_classes(origin, valid, cls, mkey);
+    uint pairs = p.pairs;
+#if SORT_SKEW
+    // sort-grid-adaptive: every class while the smoothed share of skewed classes is low.
+    if (pairs == SORT_PAIRS_FROM_GATE) {
+        pairs = pairs_gate[1] != 0u && pairs_gate[0] >= PAIRS_GATE_LIMIT ? 0u : 2u;
+    }
+#endif
+    if (pairs != 0u) pair_thin_classes(origin, valid, cls, pairs, mkey);
 #endif
 
     uint64_t lk[SORT_SLOTS], mk[SORT_SLOTS];

@@ -102,6 +102,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
             let seeds = Buffer::from_slice(gpu.dev(), "motion.seeds", &init).unwrap();
             let history_b = Buffer::from_slice(gpu.dev(), "motion.history", &history).unwrap();
             let stats_b = Buffer::from_slice(gpu.dev(), "motion.sort_stats", &[0u32; 2]).unwrap();
+            let gate_b = Buffer::from_slice(gpu.dev(), "motion.pairs_gate", &[0u32; 2]).unwrap();
             let rec = gpu.rec.as_mut().unwrap();
             rec.begin().unwrap();
             rec.begin_pass("classify_pixels").unwrap();
@@ -125,6 +126,7 @@ fn classify_and_class_sorting_match_cpu_and_keep_seeds_in_their_class() {
                         classes: Some(&classes),
                         history: Some(&history_b),
                         stats: Some(&stats_b),
+                        gate: Some(&gate_b),
                         retarget: None,
                         cycle: None,
                     },

@@ -2,9 +2,12 @@
 //! permutation of the initial seeds after every pass.
 use crate::{Gpu, Lcg};
 use blueshift_device::{Buffer, MemoryLocation};
-use blueshift_layout::params::{PRIMARY_SHADE_EDGE, PRIMARY_TEXTURED, SHADE_EDGE_MIN_FRAMES};
+use blueshift_layout::params::{
+    PAIRS_GATE_LIMIT, PAIRS_GATE_ONE, PRIMARY_SHADE_EDGE, PRIMARY_TEXTURED, SHADE_EDGE_MIN_FRAMES,
+    SORT_PAIRS_FROM_GATE,
+};
 use blueshift_permute::{
-    CYCLE_FRAMES, CycleInput, CycleParams, PermutePasses, Screen, SortInput, SortParams,
+    CYCLE_FRAMES, CycleInput, CycleParams, PairsGate, PermutePasses, Screen, SortInput, SortParams,
     SortVariant, cycle_keys_cpu, is_permutation_of, mask_offset, pack_mask_moves,
     retarget_seeds_cpu, shade_edges_cpu, sort_seeds_cpu, with_cycle,
 };
@@ -395,8 +398,20 @@ fn every_sort_variant_matches_cpu() {
         let name = v.shader();
         // The largest block of each slot count: 8x8 (64 slots) or 4x4 (16).
         let block = if v.large { 8 } else { 4 };
+        // A variant with the pairs gate takes its pairs from the gate's buffer: a share at the
+        // limit (none), just under it (every class), or nothing counted yet (every class).
+        let from_gate = v.pairs && v.skew;
+        let (gate_words, gate_pairs) = match i / 4 % 3 {
+            0 => ([PAIRS_GATE_LIMIT, 1], 0),
+            1 => ([PAIRS_GATE_LIMIT - 1, 1], 2),
+            _ => ([PAIRS_GATE_ONE, 0], 2),
+        };
         let p = SortParams {
-            pairs: if v.pairs { 1 + (i as u32 / 4) % 2 } else { 0 },
+            pairs: match (v.pairs, from_gate) {
+                (false, _) => 0,
+                (true, true) => SORT_PAIRS_FROM_GATE,
+                (true, false) => 1 + (i as u32 / 4) % 2,
+            },
             phase: i as u32 % 2,
             count_skew: u32::from(v.skew),
             ..sc.sort_params_on_grid(block, (3, 7), (i as u32 % block, 5 % block))
@@ -416,6 +431,7 @@ fn every_sort_variant_matches_cpu() {
         let seeds = upload("variant.seeds", &init);
         let out = upload("variant.seeds_out", &vec![0; init.len()]);
         let stats = upload("variant.sort_stats", &[0, 0]);
+        let gate = upload("variant.pairs_gate", &gate_words);
         let input = SortInput {
             estimate: &est,
             mask: match (v.retarget, v.cycle) {
@@ -426,6 +442,7 @@ fn every_sort_variant_matches_cpu() {
             classes: v.classes.then_some(&classes_b),
             history: v.history.then_some(&history_b),
             stats: v.skew.then_some(&stats),
+            gate: from_gate.then_some(&gate),
             retarget: v.retarget.then_some(&out),
             cycle: v.cycle.then_some(CycleInput {
                 history: &hist_b,
@@ -469,7 +486,17 @@ fn every_sort_variant_matches_cpu() {
         } else {
             (lum.clone(), mask.clone())
         };
-        let counts = sort_seeds_cpu(&p, &keys, &slice, &cls, hist, &mut cpu);
+        let resolved = SortParams {
+            pairs: match from_gate {
+                true => PairsGate::from_words(gate_words).pairs(),
+                false => p.pairs,
+            },
+            ..p
+        };
+        if from_gate {
+            assert_eq!(resolved.pairs, gate_pairs, "{name}: the gate's rule");
+        }
+        let counts = sort_seeds_cpu(&resolved, &keys, &slice, &cls, hist, &mut cpu);
         let got = if v.retarget {
             cpu = retarget_seeds_cpu(&p, &table, &cpu);
             out.read::<u32>().unwrap()
@@ -486,4 +513,39 @@ fn every_sort_variant_matches_cpu() {
     }
     // 48 variants, the 8 cycle ones twice.
     assert_eq!(checked, 56);
+}
+
+/// The pairs gate pass against its twin over a run of counts: frames with nothing counted,
+/// the first count, a crossing of the limit each way, counts in the millions (a 4K screen's
+/// classes: the fixed-point product needs 64 bits), more skewed than counted (clamped).
+#[test]
+fn pairs_gate_matches_cpu() {
+    let mut gpu = Gpu::new();
+    let passes = PermutePasses::new(gpu.dev()).unwrap();
+    let dev = gpu.dev().clone();
+    let mut stats = Buffer::new(&dev, "gate.sort_stats", 8, MemoryLocation::CpuToGpu).unwrap();
+    let gate = Buffer::from_slice(&dev, "gate.pairs_gate", &[0u32, 0]).unwrap();
+    let mut rng = Lcg(5);
+    let mut run: Vec<[u32; 2]> = vec![[0, 0], [3, 100], [0, 0], [40, 100], [90, 97]];
+    run.extend((0..20).map(|_| [0, 50]));
+    run.extend([[4_000_000, 4_100_000], [7, 5], [0, 0]]);
+    run.extend((0..30).map(|_| {
+        let counted = rng.next_u32() % 5000;
+        [rng.next_u32() % (counted + 1) / 4, counted]
+    }));
+    let mut cpu = PairsGate::default();
+    let mut seen = [false; 2];
+    for (k, c) in run.iter().enumerate() {
+        stats.write(0, c).unwrap();
+        let rec = gpu.rec.as_mut().unwrap();
+        rec.begin().unwrap();
+        rec.begin_pass("pairs_gate").unwrap();
+        passes.pairs_gate(rec, &stats, &gate).unwrap();
+        rec.submit_and_wait().unwrap();
+        cpu.update(*c);
+        let got: Vec<u32> = gate.read().unwrap();
+        assert_eq!(got, cpu.words(), "step {k}: counts {c:?}");
+        seen[usize::from(cpu.pairs() == 2)] = true;
+    }
+    assert_eq!(seen, [true, true], "the run crosses the limit");
 }

@@ -26,7 +26,8 @@ gpu_struct! {
         pub grid_y: u32,
         /// 1: classes at most 2 pixels wide or tall in the block rank against antithetic pairs
         /// on a checkerboard instead of the mask (whose restriction to a thin strip is not
-        /// blue); 2: every class does; 0: the paper's ranking everywhere.
+        /// blue); 2: every class does; 0: the paper's ranking everywhere; SORT_PAIRS_FROM_GATE:
+        /// 0 or 2 as the pairs gate's buffer says (variants that count skewed classes).
         pub pairs: u32,
         /// Checkerboard phase (0 or 1) of the pairs: alternated per frame so that no pixel
         /// always takes the lower half of its class's keys.
@@ -129,6 +130,17 @@ pub fn sample_key_code(x: u32, y: u32) -> u32 {
 /// cannot cancel a heavy tail (docs/algorithm.md, "pairs=adaptive").
 pub const SKEW_MIN_PIXELS: u32 = 8;
 pub const SKEW_LIMIT: f32 = 2.0;
+
+/// `SortParams::pairs` of `sort-grid-adaptive`: the pairs the `pairs_gate` pass chose from
+/// the counts of the frames before (0 or 2), read from the gate's buffer on the GPU, so that
+/// the frame need not wait for the one before it.
+pub const SORT_PAIRS_FROM_GATE: u32 = 3;
+/// The pairs gate keeps its smoothed share of skewed classes in fixed point, units of
+/// 1 / PAIRS_GATE_ONE: integer arithmetic, so that the pass and its CPU twin agree exactly.
+pub const PAIRS_GATE_ONE: u32 = 1 << 24;
+/// Pairs go to every class while the smoothed share is below this: 0.1 (rounded up to the
+/// next unit), from the shares measured on the bundled scenes (`PairsGate`).
+pub const PAIRS_GATE_LIMIT: u32 = PAIRS_GATE_ONE / 10 + 1;
 
 gpu_struct! {
     /// Push constants of `trace/trace` (124 bytes: fits the 128-byte minimum limit).

@@ -49,6 +49,11 @@ pub fn sort_seeds_cpu(
     history: &[f32],
     seeds: &mut [u32],
 ) -> [u32; 2] {
+    assert_ne!(
+        p.pairs,
+        blueshift_layout::params::SORT_PAIRS_FROM_GATE,
+        "the twin takes the gate's choice resolved (PairsGate::pairs)"
+    );
     let mut stats = [0, 0];
     let n = p.mask_size;
     let (bx, by) = crate::block_counts(p);

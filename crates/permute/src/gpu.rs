@@ -1,7 +1,8 @@
-//! The GPU passes: `permute/classify_pixels` and `permute/sort_seeds`, which also retargets
-//! (seed reprojection: reproject_gpu.rs).
+//! The GPU passes: `permute/classify_pixels`, `permute/sort_seeds`, which also retargets, and
+//! `permute/pairs_gate` (seed reprojection: reproject_gpu.rs).
 use crate::{PermuteError, Result, SortParams};
 use blueshift_device::{Binding, Buffer, ComputePipeline, Device, PipelineCache, Recorder, Res};
+use blueshift_layout::params::SORT_PAIRS_FROM_GATE;
 pub use blueshift_layout::variants::SortVariant;
 
 /// The buffers the sorting pass reads and writes. Which of the optional ones it binds is the
@@ -23,6 +24,10 @@ pub struct SortInput<'a> {
     /// `SortParams::count_skew` is set; the caller zeroes them (`sort_seeds_cpu` returns the
     /// same counts).
     pub stats: Option<&'a Buffer>,
+    /// `SortVariant::skew` with `pairs`: the pairs gate's two words (`PairsGate::words`),
+    /// read where `SortParams::pairs` is `SORT_PAIRS_FROM_GATE` (the `pairs_gate` pass
+    /// updates them from `stats` after the sort).
+    pub gate: Option<&'a Buffer>,
     /// `SortVariant::retarget`: the buffer the seeds are retargeted into (padded like the
     /// seeds; every seed is written).
     pub retarget: Option<&'a Buffer>,
@@ -53,17 +58,19 @@ impl<'a> SortInput<'a> {
             classes: None,
             history: None,
             stats: None,
+            gate: None,
             retarget: None,
             cycle: None,
         }
     }
 
     /// The optional buffers in `SORT_OPTIONAL`'s order.
-    fn optional(&self) -> [Option<&'a Buffer>; 7] {
+    fn optional(&self) -> [Option<&'a Buffer>; 8] {
         [
             self.classes,
             self.history,
             self.stats,
+            self.gate,
             self.retarget,
             self.cycle.map(|c| c.history),
             self.cycle.map(|c| c.accum),
@@ -102,10 +109,11 @@ impl<'a> SortInput<'a> {
 
 /// Whether `v` binds each of `SORT_OPTIONAL`; with sample keys (a moving view, which marks no
 /// shading edges) the cycle's shader binds no flags.
-fn optional_flags(v: SortVariant) -> [bool; 7] {
+fn optional_flags(v: SortVariant) -> [bool; 8] {
     let flags = v.cycle && !v.sample_keys;
+    let gate = v.skew && v.pairs;
     [
-        v.classes, v.history, v.skew, v.retarget, v.cycle, v.cycle, flags,
+        v.classes, v.history, v.skew, gate, v.retarget, v.cycle, v.cycle, flags,
     ]
 }
 
@@ -115,12 +123,13 @@ const SORT_BINDINGS: [Binding; 3] = [
     Binding::storage(1, "mask"),
     Binding::storage(2, "seeds"),
 ];
-/// Bindings of the extensions, in the order of `SortInput`'s classes, history, stats,
+/// Bindings of the extensions, in the order of `SortInput`'s classes, history, stats, gate,
 /// retarget and cycle (three buffers).
-const SORT_OPTIONAL: [Binding; 7] = [
+const SORT_OPTIONAL: [Binding; 8] = [
     Binding::storage(3, "classes"),
     Binding::storage(4, "hist_mean"),
     Binding::storage(5, "sort_stats"),
+    Binding::storage(10, "pairs_gate"),
     Binding::storage(6, "seeds_out"),
     Binding::storage(7, "cycle_history"),
     Binding::storage(8, "accum"),
@@ -131,6 +140,7 @@ const SORT_OPTIONAL: [Binding; 7] = [
 pub struct PermutePasses {
     dev: Device,
     classify: ComputePipeline,
+    gate: ComputePipeline,
     /// Sorting-pass shaders created so far, by variant.
     sort: PipelineCache<SortVariant>,
 }
@@ -161,9 +171,19 @@ impl PermutePasses {
             ],
             std::mem::size_of::<SortParams>(),
         )?;
+        let gate = pipeline(
+            dev,
+            "permute/pairs_gate",
+            &[
+                Binding::storage(0, "sort_stats"),
+                Binding::storage(1, "pairs_gate"),
+            ],
+            0,
+        )?;
         Ok(Self {
             dev: dev.clone(),
             classify,
+            gate,
             sort: PipelineCache::default(),
         })
     }
@@ -179,6 +199,12 @@ impl PermutePasses {
         seeds: &Buffer,
     ) -> Result<()> {
         input.check(v, p.block)?;
+        if p.pairs == SORT_PAIRS_FROM_GATE && !(v.pairs && v.skew) {
+            return Err(PermuteError::Invalid(format!(
+                "sorting pass: {} has no pairs gate to take the pairs from",
+                v.shader()
+            )));
+        }
         if v.cycle && v.sample_keys != (p.cycle_sample_keys != 0) {
             return Err(PermuteError::Invalid(format!(
                 "sorting pass: {} with cycle_sample_keys = {}",
@@ -221,6 +247,18 @@ impl PermutePasses {
             )
         })?;
         rec.dispatch(pipeline, &resources, bytemuck::bytes_of(p), groups)?;
+        Ok(())
+    }
+
+    /// Records the pairs gate: folds the sort's (skewed, counted) `stats` into the smoothed
+    /// share the next frame's sort reads from `gate` (`PairsGate::update` is its twin).
+    pub fn pairs_gate(&self, rec: &mut Recorder, stats: &Buffer, gate: &Buffer) -> Result<()> {
+        rec.dispatch(
+            &self.gate,
+            &[("sort_stats", stats.into()), ("pairs_gate", gate.into())],
+            &[],
+            [1, 1, 1],
+        )?;
         Ok(())
     }
 

@@ -15,6 +15,7 @@ mod cycle;
 mod edges;
 mod gpu;
 mod history;
+mod pairs_gate;
 mod reproject;
 mod reproject_gpu;
 mod shade;
@@ -34,6 +35,7 @@ pub use cycle::{
 pub use edges::classify_pixels_cpu;
 pub use gpu::{CycleInput, PermutePasses, SortInput, SortVariant};
 pub use history::{HistoryKeys, history_key_cpu};
+pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
 pub use reproject::{
     Reprojected, mean_motion, project_previous, reproject_motion_cpu, reproject_seeds_cpu,
 };

@@ -58,7 +58,6 @@ impl Renderer {
                     assets: &self.assets,
                     frame: self.frame,
                     accumulated: self.accumulated,
-                    pairs_gate: &self.pairs_gate,
                     follow: &self.follow,
                     sequence: self.cfg.sequence,
                 };
@@ -184,6 +183,7 @@ impl Renderer {
                     self.cycle.as_ref(),
                 )?
             }
+            Pass::PairsGate => passes::pairs_gate(rec, &self.passes.permute, res)?,
             Pass::Accumulate if self.cfg.accumulation != Accumulation::Mean => {
                 let missing = || RenderError::Invalid("taa pass without its state".into());
                 let st = self.surfaces.as_mut().ok_or_else(missing)?;

@@ -25,7 +25,6 @@ mod image;
 mod method;
 mod method_spec;
 mod motion;
-mod pairs_gate;
 mod passes;
 mod permutation;
 mod readback;
@@ -39,6 +38,7 @@ mod taa_pass;
 mod trace_params;
 
 pub use blueshift_assets::{MethodAssets, default_assets_dir};
+pub use blueshift_permute::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
 pub use blueshift_trace::{
     GBufferPass, LLVMPIPE_LOOP_LIMIT, SceneBuffers, SceneImages, TRACE_LOOP_GUARD, TraceError,
     TraceVariant, gbuffer_cpu,
@@ -51,7 +51,6 @@ pub use method::{
     Target, Transport,
 };
 pub use motion::motion_params;
-pub use pairs_gate::{PAIRS_MAX_SKEWED_SHARE, PairsGate, SKEWED_SHARE_ALPHA};
 pub use readback::HistoryState;
 pub use seeds::{SeedMap, block_seeds, initial_seeds, tile_seeds};
 pub use slots::{Completed, FRAMES_IN_FLIGHT, FrameOutput};
@@ -165,6 +164,8 @@ impl Renderer {
         let local = |name: &str, bytes: u64| Buffer::new(dev, name, bytes, MemoryLocation::GpuOnly);
         let primary_flags = local("frame.primary_flags", pixels * 4)?;
         zero(dev, &primary_flags)?;
+        let pairs_gate = local("frame.pairs_gate", 8)?;
+        zero(dev, &pairs_gate)?;
         let seeds = [
             Buffer::upload(dev, "frame.seeds.a", &initial)?,
             Buffer::upload(dev, "frame.seeds.b", &initial)?,
@@ -190,6 +191,7 @@ impl Renderer {
                 ldr: local("frame.ldr", pixels * 4)?,
                 masks: Masks::new(dev, assets, &words, keys_spp)?,
                 sort_stats: local("frame.sort_stats", 8)?,
+                pairs_gate,
             },
             slots: [FrameSlot::new(dev, 0)?, FrameSlot::new(dev, 1)?],
             slot: 0,
@@ -220,7 +222,8 @@ impl Renderer {
     pub fn camera(&self) -> Camera {
         self.camera
     }
-    /// `sort-grid-adaptive`'s smoothed share of skewed classes and its choice of pairs.
+    /// `sort-grid-adaptive`'s smoothed share of skewed classes and its choice of pairs, as the
+    /// last frame finished left them on the GPU.
     pub fn pairs_gate(&self) -> PairsGate {
         self.pairs_gate
     }
@@ -266,6 +269,7 @@ impl Renderer {
             s.write(0, &self.initial_seeds)?;
         }
         zero(&self.dev, &self.res.primary_flags)?;
+        zero(&self.dev, &self.res.pairs_gate)?;
         self.res.current = 0;
         self.frame = 0;
         self.accumulated = 0;

@@ -7,9 +7,9 @@ use crate::image::ImagePasses;
 use crate::motion::Surfaces;
 use crate::recipe::{MaskSource, SortGrid, SortPlan};
 use crate::resources::FrameResources;
-use crate::{MethodAssets, PairsGate, RenderError, Result};
+use crate::{MethodAssets, Pairs, RenderError, Result};
 use blueshift_device::Recorder;
-use blueshift_layout::params::{ImageParams, TraceParams};
+use blueshift_layout::params::{ImageParams, SORT_PAIRS_FROM_GATE, TraceParams};
 use blueshift_permute::{
     CycleInput, PermutePasses, Screen, SortInput, SortParams, add_mask_shift, grid_offset,
     mask_offset, pair_phase, sequence_mask_shift,
@@ -54,7 +54,6 @@ pub(crate) struct SortContext<'a> {
     pub frame: u64,
     /// Frames in the running mean before this one (the point cycle's keys).
     pub accumulated: u32,
-    pub pairs_gate: &'a PairsGate,
     pub follow: &'a FollowShift,
     /// The sequence, whose mask shift comes on top.
     pub sequence: u32,
@@ -70,7 +69,7 @@ pub(crate) fn sort_params(s: &SortPlan, offset: (u32, u32), c: &SortContext) -> 
             let next = mask_offset(c.frame + 1, shift, n);
             let grid = grid_offset(c.frame + 1, s.block);
             SortParams {
-                pairs: c.pairs_gate.pairs_of(s.pairs),
+                pairs: pairs_of(s.pairs),
                 phase: pair_phase(c.frame + 1, s.hashed_phase),
                 count_skew: u32::from(s.count_skew),
                 ..c.screen.sort_params_on_grid(s.block, next, grid)?
@@ -105,6 +104,17 @@ pub(crate) fn sort_params(s: &SortPlan, offset: (u32, u32), c: &SortContext) -> 
         offset_y,
         ..sp
     })
+}
+
+/// `SortParams::pairs` of a sort whose rule is `rule`: 0 none, 1 thin classes, 2 every
+/// class; adaptive pairs take what the pairs gate chose from the counts so far, on the GPU.
+fn pairs_of(rule: Pairs) -> u32 {
+    match rule {
+        Pairs::Off => 0,
+        Pairs::Thin => 1,
+        Pairs::Adaptive => SORT_PAIRS_FROM_GATE,
+        Pairs::All => 2,
+    }
 }
 
 /// Records the sorting pass of plan `s` with parameters `sp` on the current seeds (in place,
@@ -146,6 +156,7 @@ pub(crate) fn sort_seeds(
             .map(|h| h.ok_or_else(|| missing("history keys")))
             .transpose()?,
         stats: v.skew.then_some(&res.sort_stats),
+        gate: (v.skew && v.pairs).then_some(&res.pairs_gate),
         retarget: v.retarget.then_some(res.other_seeds()),
         cycle,
         ..SortInput::new(&res.estimate, res.masks.get(s.mask)?)
@@ -153,6 +164,16 @@ pub(crate) fn sort_seeds(
     rec.begin_pass("sort_seeds")?;
     permute.sort_seeds(rec, sp, v, &input, res.seeds())?;
     Ok(())
+}
+
+/// Records the adaptive pairs' gate: the sort's counts into the choice of the next sort.
+pub(crate) fn pairs_gate(
+    rec: &mut Recorder,
+    permute: &PermutePasses,
+    res: &FrameResources,
+) -> Result<()> {
+    rec.begin_pass("pairs_gate")?;
+    Ok(permute.pairs_gate(rec, &res.sort_stats, &res.pairs_gate)?)
 }
 
 /// Records one step of the running mean: the estimate into the accumulation.

@@ -99,6 +99,9 @@ pub(crate) enum Pass {
     ClearSortStats,
     /// The sorting pass.
     Sort,
+    /// The adaptive pairs' gate: this frame's counts into the choice the next sort reads, on
+    /// the GPU (the next frame need not wait for this one).
+    PairsGate,
     Accumulate,
     Tonemap,
     /// Copies the status words (and the output frames, when asked) to the frame slot's
@@ -216,6 +219,9 @@ pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState) -> FrameRecipe {
             passes.push(Pass::ClearSortStats);
         }
         passes.push(Pass::Sort);
+        if m.adapts_pairs() {
+            passes.push(Pass::PairsGate);
+        }
         SortPlan {
             variant,
             mask,

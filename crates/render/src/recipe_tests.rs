@@ -66,6 +66,15 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
                 );
                 let sort = at(|p| *p == Pass::Sort).expect("a sort pass");
                 assert!(trace < sort, "{name}");
+                // The adaptive pairs: counts cleared before the sort, folded in after it.
+                let clear = at(|p| *p == Pass::ClearSortStats);
+                let gate = at(|p| *p == Pass::PairsGate);
+                assert_eq!(clear.is_some(), m.adapts_pairs(), "{name}");
+                assert_eq!(gate.is_some(), m.adapts_pairs(), "{name}");
+                assert!(clear.is_none_or(|c| c < sort), "{name}");
+                assert!(gate.is_none_or(|g| g == sort + 1), "{name}");
+                assert_eq!(s.count_skew, m.adapts_pairs(), "{name}");
+                assert_eq!(v.skew && v.pairs, m.adapts_pairs(), "{name}");
                 let classify = at(|p| matches!(p, Pass::Classify { .. }));
                 let per_block = at(|p| *p == Pass::ClassesPerBlock);
                 assert_eq!(classify.is_some(), v.classes, "{name} {view:?}");

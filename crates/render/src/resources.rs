@@ -31,6 +31,9 @@ pub(crate) struct FrameResources {
     pub masks: Masks,
     /// (skewed classes, classes counted) of the last sorting pass (`SortInput::stats`).
     pub sort_stats: Buffer,
+    /// The adaptive pairs' gate (`PairsGate::words`): the `pairs_gate` pass updates it after
+    /// each sort, the next sort reads it; zero for a new sequence.
+    pub pairs_gate: Buffer,
 }
 
 impl FrameResources {

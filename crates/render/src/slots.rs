@@ -3,7 +3,7 @@
 //! waited for when a frame needs it again, or when the next frame depends on what it read
 //! back. Frames on the one queue run in order (each command buffer starts with a barrier), so
 //! the serial state (seeds, histories, accumulation) needs no copies.
-use crate::{FrameStats, LoopStats, Renderer, Result};
+use crate::{FrameStats, LoopStats, PairsGate, Renderer, Result};
 use blueshift_device::{Buffer, Device, MemoryLocation, PassTime, Recorder};
 use blueshift_layout::params::TRACE_STATUS_WORDS;
 
@@ -95,7 +95,7 @@ impl Renderer {
         s.rec.copy_buffer(&self.res.trace_status, &s.status, None)?;
         if self.recipes.base().adapts_pairs {
             s.rec.copy_region(
-                &self.res.sort_stats,
+                &self.res.pairs_gate,
                 &s.status,
                 4 * TRACE_STATUS_WORDS as u64,
                 8,
@@ -137,7 +137,7 @@ impl Renderer {
         let status = &words[..TRACE_STATUS_WORDS as usize];
         if f.gate {
             let at = TRACE_STATUS_WORDS as usize;
-            self.pairs_gate.update([words[at], words[at + 1]]);
+            self.pairs_gate = PairsGate::from_words([words[at], words[at + 1]]);
         }
         let output = match (&s.output, f.output) {
             (Some([ldr, estimate]), true) => {
@@ -179,15 +179,15 @@ impl Renderer {
         Ok(done)
     }
 
-    /// Whether the next frame must wait for the one before it: its sort reads the pairs gate
-    /// that frame's counts update, or its trace splits its samples by that frame's loop count
-    /// (only when the spp could need more than one dispatch; the split changes the rounding
-    /// of the running mean).
+    /// Whether the next frame must wait for the one before it: its trace splits its samples
+    /// by that frame's loop count (only when the spp could need more than one dispatch; the
+    /// split changes the rounding of the running mean). The adaptive pairs' gate stays on the
+    /// GPU (`pairs_gate` pass), so it never makes a frame wait.
     pub(crate) fn needs_previous(&self) -> bool {
         let fewest = blueshift_trace::samples_per_dispatch(
             blueshift_trace::TRACE_FIRST_DISPATCH_VERTICES,
             self.cfg.bounces,
         );
-        self.recipes.base().adapts_pairs || self.cfg.spp > fewest
+        self.cfg.spp > fewest
     }
 }
