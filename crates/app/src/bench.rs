@@ -1,11 +1,14 @@
 //! `blueshift bench`: throughput of the path-tracing pass from GPU timestamps (on lavapipe,
 //! CPU time per pass), as Msamples/s; plus primary-ray Mrays/s with `--bounces 0`.
+//! The results are printed only once every frame (`--loop-stats` ones included) has rendered:
+//! a run that fails halfway prints its error and no numbers, rather than a partial table.
 use crate::GpuOpts;
 use crate::args::{MethodArgs, comparison_parser, preset_name};
 use anyhow::{Result, bail};
 use blueshift_render::{
     CameraPath, LLVMPIPE_LOOP_LIMIT, LoopStats, Method, RenderConfig, Renderer, TraceLoop,
 };
+use std::fmt::Write as _;
 
 /// `bench`'s flags.
 #[derive(clap::Args, Debug)]
@@ -82,9 +85,11 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
         .zip(cpu0)
         .map(|(t1, t0)| (t1 - t0) / f64::from(a.frames));
     ms.sort_by(f64::total_cmp);
+    let mut out = String::new();
     let median = ms[ms.len() / 2];
     let samples = cfg.width as f64 * cfg.height as f64 * cfg.spp as f64;
-    println!(
+    writeln!(
+        out,
         "scene {} {}x{} spp {} bounces {} method {} on {}",
         a.method.scene.scene,
         cfg.width,
@@ -93,7 +98,7 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
         cfg.bounces,
         cfg.method,
         dev.info().name
-    );
+    )?;
     // Medians per pass; each also per pixel and as a share of the trace pass, the measure of
     // what a permutation method costs on top of the path tracing.
     // A pass skipped in some frames (the G-buffer of a still view) counts 0 ms there.
@@ -117,39 +122,44 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
         } else {
             String::new()
         };
-        println!(
+        writeln!(
+            out,
             "  pass {name:<16} median {m:9.3} ms {:8.2} ns/px {:7.2}% of trace{skipped}",
             m * 1e6 / pixels,
             100.0 * m / trace
-        );
+        )?;
     }
     let permute: f64 = medians
         .iter()
         .filter(|(n, ..)| blueshift_render::PERMUTE_PASSES.contains(&n.as_str()))
         .map(|p| p.1)
         .sum();
-    println!(
+    writeln!(
+        out,
         "  permutation passes {permute:.3} ms {:.2} ns/px: {:.2}% of trace",
         permute * 1e6 / pixels,
         100.0 * permute / trace
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "  trace loop iterations per SIMD batch: at most {loop_iterations} \
          (llvmpipe limit {LLVMPIPE_LOOP_LIMIT})"
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "trace median {median:.1} ms: {:.3} Msamples/s",
         samples / median / 1e3
-    );
+    )?;
     if let Some(cpu) = cpu {
         // Less sensitive to other jobs on the machine than the wall-clock timestamps.
-        println!(
+        writeln!(
+            out,
             "process CPU time per timed frame {cpu:.3} s: {:.3} Msamples per CPU second",
             samples / cpu / 1e6
-        );
+        )?;
     }
     if cfg.bounces == 0 {
-        println!("primary rays: {:.3} Mrays/s", samples / median / 1e3);
+        writeln!(out, "primary rays: {:.3} Mrays/s", samples / median / 1e3)?;
     }
     if a.loop_stats {
         let cfg = RenderConfig {
@@ -166,27 +176,35 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
                 loops.add(&l);
             }
         }
-        print_loop_stats(
+        loop_table(
+            &mut out,
             &loops,
             samples * f64::from(a.frames),
             dev.info().subgroup_size,
-        );
+        )?;
     }
+    crate::check_validation(&dev)?;
+    print!("{out}");
     Ok(())
 }
 
 /// The loop table of `--loop-stats` for `samples` samples in all.
-fn print_loop_stats(loops: &LoopStats, samples: f64, width: u32) {
+fn loop_table(out: &mut String, loops: &LoopStats, samples: f64, width: u32) -> Result<()> {
     let total = loops.total();
     let pct = |u: Option<f64>| u.map_or("-".to_string(), |u| format!("{:.1}%", 100.0 * u));
-    println!("loops of the trace pass (same frames, counting shader; SIMD batches of {width}):");
-    println!(
+    writeln!(
+        out,
+        "loops of the trace pass (same frames, counting shader; SIMD batches of {width}):"
+    )?;
+    writeln!(
+        out,
         "  {:<16} {:>14} {:>12} {:>11}",
         "loop", "batch iter. %", "per sample", "lanes busy"
-    );
+    )?;
     for l in TraceLoop::ALL {
         let c = loops.get(l);
-        println!(
+        writeln!(
+            out,
             "  {:<16} {:>14} {:>12.2} {:>11}",
             format!("{}{}", if l.nested() { "  " } else { "" }, l.name()),
             format!(
@@ -195,15 +213,17 @@ fn print_loop_stats(loops: &LoopStats, samples: f64, width: u32) {
             ),
             c.lanes as f64 / samples,
             pct(c.utilization(width)),
-        );
+        )?;
     }
-    println!(
+    writeln!(
+        out,
         "  {:<16} {:>14} {:>12.2} {:>11}",
         "all loops",
         "100.0",
         total.lanes as f64 / samples,
         pct(total.utilization(width)),
-    );
+    )?;
+    Ok(())
 }
 
 /// User + system CPU time of this process (all threads, lavapipe's included), from

@@ -1,6 +1,7 @@
 //! Atomic image output: write to a temporary file in the same directory, then rename, so a
 //! failed or interrupted run never leaves a half-written file under the final name; and
-//! [`Staged`] output, whose files appear only once the whole run has succeeded.
+//! [`Staged`] output, whose files appear only once the whole run has succeeded (`render`,
+//! `eval`; `bench` prints its results only at the end for the same reason).
 use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
 
@@ -54,7 +55,7 @@ pub fn prepare_dir(dir: &Path) -> Result<OutputDir> {
     Ok(guard)
 }
 
-/// The files of a run of several outputs (`render --all-frames`), written into a hidden
+/// The files of a run (`render`'s frames; `eval`'s report, figures and `frames/`), written into a hidden
 /// temporary directory inside the output directory and moved into it by [`Staged::commit`]
 /// once the run has succeeded. A run that fails before (a lost device at frame 40) leaves the
 /// output directory as it found it: the temporary directory is removed, and so is the output
@@ -89,28 +90,46 @@ impl Staged {
         self.tmp.path()
     }
 
-    /// Moves every file written into the output directory (replacing files of the same name).
-    /// A name a directory already has there is refused before anything is moved.
+    /// Moves what was written into the output directory: a file replaces the file of its name,
+    /// a directory is moved whole where the name is free, else merged into the directory there
+    /// the same way (`eval`'s `frames/`). Every name is checked before anything is moved, so a
+    /// directory where a file goes, or a file where a directory goes, leaves the output
+    /// directory as it was.
     pub fn commit(self) -> Result<()> {
-        let mut names = Vec::new();
-        for e in std::fs::read_dir(self.tmp.path()).context("reading the temporary output")? {
-            names.push(e.context("reading the temporary output")?.file_name());
-        }
-        names.sort();
-        for n in &names {
-            let target = self.dir.join(n);
-            if std::fs::symlink_metadata(&target).is_ok_and(|m| m.is_dir()) {
-                bail!(
-                    "cannot write {}: a directory of that name is in the way",
-                    target.display()
-                );
-            }
-        }
-        for n in &names {
-            let target = self.dir.join(n);
-            std::fs::rename(self.tmp.path().join(n), &target)
-                .with_context(|| format!("cannot write {}", target.display()))?;
+        let mut moves = Vec::new();
+        plan_moves(self.tmp.path(), &self.dir, &mut moves)?;
+        for (from, to) in &moves {
+            std::fs::rename(from, to).with_context(|| format!("cannot write {}", to.display()))?;
         }
         Ok(())
     }
+}
+
+/// Appends the renames that move the entries of `from` into `to` (in name order), or fails
+/// on the first name that `to` holds as the other kind (file or directory).
+fn plan_moves(from: &Path, to: &Path, moves: &mut Vec<(PathBuf, PathBuf)>) -> Result<()> {
+    let reading = "reading the temporary output";
+    let mut entries = Vec::new();
+    for e in std::fs::read_dir(from).context(reading)? {
+        let e = e.context(reading)?;
+        entries.push((e.file_name(), e.file_type().context(reading)?.is_dir()));
+    }
+    entries.sort();
+    for (name, is_dir) in entries {
+        let (src, dst) = (from.join(&name), to.join(&name));
+        let there = std::fs::symlink_metadata(&dst).ok().map(|m| m.is_dir());
+        match (is_dir, there) {
+            (false, Some(true)) => bail!(
+                "cannot write {}: a directory of that name is in the way",
+                dst.display()
+            ),
+            (true, Some(false)) => bail!(
+                "cannot write {}/: a file of that name is in the way",
+                dst.display()
+            ),
+            (true, Some(true)) => plan_moves(&src, &dst, moves)?,
+            _ => moves.push((src, dst)),
+        }
+    }
+    Ok(())
 }

@@ -13,7 +13,7 @@ mod track;
 
 use crate::GpuOpts;
 use crate::args::{SceneArgs, comparison_parser};
-use crate::output::prepare_dir;
+use crate::output::Staged;
 use anyhow::{Context, Result, bail};
 use blueshift_analysis::{Gray, luminance};
 use blueshift_render::{CameraPath, Method, RenderConfig, Renderer, SeedMap, taa};
@@ -23,7 +23,7 @@ use masks::Masks;
 use metrics::{RunAccumulator, RunMetrics};
 use reference::{RefJob, references};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// The largest `--first-sequence` (any u32 would do; larger is a typo).
@@ -180,7 +180,9 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
         ..RenderConfig::new(args.width, args.height)
     }
     .validate(&dev)?;
-    let _out = prepare_dir(&args.out)?;
+    // The report, figures and saved frames appear in the output directory only if the whole
+    // run succeeds: a failed run leaves it as it was (or absent).
+    let out = Staged::new(&args.out)?;
     let scene_gpu = SceneGpu::build(&scene);
 
     let mut runs = Vec::new();
@@ -243,6 +245,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                         args,
                         refs: &refs,
                         bar: &bar,
+                        out: out.path(),
                     };
                     runs.push(run_method(&ctx, &config, m, seed_map)?);
                 }
@@ -253,7 +256,8 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     }
     crate::check_validation(&dev)?;
     let elapsed = start.elapsed().as_secs_f64();
-    report::write(&args.out, args, &dev, &configs, &runs, elapsed)?;
+    report::write(out.path(), args, &dev, &configs, &runs, elapsed)?;
+    out.commit()?;
     println!(
         "wrote {} ({} runs, {:.0} s)",
         args.out.join("report.md").display(),
@@ -275,6 +279,8 @@ struct RunContext<'a> {
     args: &'a EvalArgs,
     refs: &'a reference::References,
     bar: &'a ProgressBar,
+    /// Where the run's files go until it has succeeded ([`Staged::path`]).
+    out: &'a Path,
 }
 
 fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedMap) -> Result<Run> {
@@ -333,7 +339,7 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
             }
             let est = r.read_estimate()?;
             if args.save_frames && k == 0 {
-                save_frame(args, config, method, t, &est, &rf.px)?;
+                save_frame(ctx.out, args, config, method, t, &est, &rf.px)?;
             }
             // Luminance from rgb: the estimate's fourth channel is the sorting key, which
             // demodulating methods change.
@@ -407,8 +413,9 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
     })
 }
 
-/// Writes frame `t` of a run and its reference as linear EXR.
+/// Writes frame `t` of a run and its reference as linear EXR under `out/frames/`.
 fn save_frame(
+    out: &Path,
     args: &EvalArgs,
     c: &Config,
     m: Method,
@@ -417,8 +424,7 @@ fn save_frame(
     reference: &[[f32; 4]],
 ) -> Result<()> {
     use crate::output::{exr_rgb32f, write_atomic};
-    let dir = args
-        .out
+    let dir = out
         .join("frames")
         .join(format!("{}_{}", c.slug(), m.name()));
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;

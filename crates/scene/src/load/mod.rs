@@ -27,7 +27,9 @@
 //! a buffer is read up to its `byteLength` and no further. External URIs must stay inside the
 //! scene file's directory unless [`LoadOptions::allow_outside_paths`] is set (`uri`).
 //!
-//! Zero-area triangles are skipped and counted in one warning. Unsupported content
+//! Zero-area triangles are skipped and counted in one warning, and so are triangles equal bit
+//! for bit to an earlier one (`dedup`: a pile of copies would cost every ray through it a
+//! test per copy, past the trace pass's loop guard). Unsupported content
 //! (non-triangle modes, normal/occlusion maps, texture transforms, unusable lights, other
 //! extensions, missing or undecodable images or ones whose header declares more texels than
 //! the budget has left, ...) is skipped with one warning line per kind, with a count, in
@@ -35,6 +37,7 @@
 
 mod accessor;
 mod budget;
+mod dedup;
 mod glb;
 mod graph;
 mod guard;
@@ -276,6 +279,7 @@ fn load_inner(
             )
         });
     }
+    dedup::drop_duplicates(&mut triangles, &mut ctx.warnings);
     if triangles.is_empty() {
         return Err(SceneError::EmptyScene {
             path: path.to_path_buf(),
