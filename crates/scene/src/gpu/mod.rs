@@ -23,10 +23,12 @@
 
 mod build;
 mod lights;
+mod texel_source;
 mod texels;
 
 pub use build::{GpuBuffer, SceneGpu};
 pub use lights::EnvGpu;
+pub use texel_source::TexelSource;
 pub use texels::*;
 
 use blueshift_layout::{Header, gpu_struct};
