@@ -181,8 +181,10 @@ pub struct SceneArgs {
 }
 
 impl SceneArgs {
-    /// Loads the scene lit as the flags say, printing its warnings (one line each).
-    pub fn load_scene(&self) -> Result<Scene> {
+    /// Loads the scene lit as the flags say, printing its warnings (one line each). The
+    /// loader's budget is what `device` can hold: a file that expands beyond it is refused
+    /// from its counts, before anything is built for it.
+    pub fn load_scene(&self, device: &blueshift_device::DeviceInfo) -> Result<Scene> {
         let spec = self.scene.as_str();
         let path = self.scene_path();
         let (environment, map_warning) = self.lights.source()?;
@@ -190,7 +192,11 @@ impl SceneArgs {
             environment,
             quiet: true,
             allow_outside_paths: self.allow_outside_paths,
-            ..Default::default()
+            budget: blueshift_scene::LoadBudget::for_device(&blueshift_scene::DeviceLimits {
+                max_storage_buffer_range: device.max_storage_buffer_range,
+                max_image_dimension_2d: device.max_image_dimension_2d,
+                memory_budget: device.memory_budget,
+            }),
         };
         let looks_like_preset = !spec.contains(['/', '.']);
         let mut scene = match Scene::load_with(&path, &opts) {

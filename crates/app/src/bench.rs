@@ -53,9 +53,9 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     let path = &a.camera_path;
     let (view, base_offset) = path.view_window(a.warmup + a.frames, cfg.width, cfg.height);
     cfg.view_size = Some(view);
-    let scene = a.method.scene.load_scene()?;
-    let assets = a.method.scene.load_assets()?;
     let dev = gpu.device()?;
+    let scene = a.method.scene.load_scene(dev.info())?;
+    let assets = a.method.scene.load_assets()?;
     let base = scene.camera_or_default();
     let path = path.clone().fit(&scene.bounds(), &base, view);
     let run = Frames {

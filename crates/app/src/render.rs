@@ -37,9 +37,10 @@ pub fn run(gpu: &GpuOpts, args: &RenderArgs) -> Result<()> {
     let path = &args.camera_path;
     let (view, base_offset) = path.view_window(args.frames, cfg.width, cfg.height);
     cfg.view_size = Some(view);
-    let scene = args.method.scene.load_scene()?;
-    let assets = args.method.scene.load_assets()?;
+    // The device first: the scene is loaded within what it can hold.
     let dev = gpu.device()?;
+    let scene = args.method.scene.load_scene(dev.info())?;
+    let assets = args.method.scene.load_assets()?;
     let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
     // Only now that every input is known to be good. The frames appear in the output
     // directory only if the whole run succeeds: a failed run leaves it as it was (or absent).

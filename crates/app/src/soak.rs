@@ -127,9 +127,9 @@ pub fn run(gpu: &GpuOpts, a: &SoakArgs) -> Result<()> {
             cfg.method
         );
     }
-    let scene = a.method.scene.load_scene()?;
-    let assets = a.method.scene.load_assets()?;
     let dev = gpu.device()?;
+    let scene = a.method.scene.load_scene(dev.info())?;
+    let assets = a.method.scene.load_assets()?;
     let path = &a.camera_path;
     let (view, base_offset) = path.view_window(a.frames, cfg.width, cfg.height);
     let cfg = blueshift_render::RenderConfig {

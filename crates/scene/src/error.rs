@@ -172,12 +172,17 @@ pub enum SceneError {
 
     /// A count taken from the file before anything is allocated for it, over the loader's
     /// budget ([`crate::LoadBudget`]).
-    #[error("{}: the scene has {count} {what}, over the loader's limit of {limit}", path.display())]
+    #[error(
+        "{}: the scene has {count} {what}, over the loader's limit of {limit} ({basis})",
+        path.display()
+    )]
     OverBudget {
         path: PathBuf,
         what: &'static str,
         count: u64,
         limit: u64,
+        /// Where the limit comes from (the device's limits, or the default).
+        basis: String,
     },
 
     #[error("{}: the scene has no triangles to render ({reason})", path.display())]

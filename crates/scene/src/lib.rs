@@ -49,7 +49,7 @@ pub use intersect::{
     occluded,
 };
 pub use lights::{LightKind, PunctualLight};
-pub use load::{EnvironmentSource, LoadBudget, LoadOptions, MAX_COORDINATE};
+pub use load::{DeviceLimits, EnvironmentSource, LoadBudget, LoadOptions, MAX_COORDINATE};
 pub use scene::{DEFAULT_ENVIRONMENT, Image, Material, Scene, Texture, Triangle, Wrap};
 
 /// Result alias for this crate.

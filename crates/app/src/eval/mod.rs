@@ -158,7 +158,11 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
             args.first_sequence
         );
     }
-    let scene = args.scene.load_scene()?;
+    // The device first: the scene is loaded within what it can hold, and every array is
+    // checked against its limits before the BVH is built.
+    let dev = gpu.device()?;
+    let scene = args.scene.load_scene(dev.info())?;
+    scene.check_limits(dev.info().max_storage_buffer_range)?;
     let (base, bounds) = (scene.camera_or_default(), scene.bounds());
     let cameras: Vec<CameraPath> = cameras
         .iter()
@@ -174,7 +178,6 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
             .map_or(PathBuf::from(".cache"), PathBuf::from)
             .join(".cache/blueshift/references")
     });
-    let dev = gpu.device()?;
     RenderConfig {
         method: Method::SORT_RETARGET, // a method that takes the block size
         block: args.scene.block,

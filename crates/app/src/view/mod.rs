@@ -120,8 +120,12 @@ pub fn run(gpu: &GpuOpts, args: &ViewArgs) -> Result<()> {
         split: args.split,
         error: args.error_view,
     };
+    // The scene is loaded within what the device can hold; the window's device (made with
+    // its surface, later) is picked by the same rule, so its limits are read from a headless
+    // one now.
+    let limits = gpu.device()?.info().clone();
     let opts = gpu::Options {
-        scene: m.scene.load_scene()?,
+        scene: m.scene.load_scene(&limits)?,
         assets: m.scene.load_assets()?,
         template: m.config(),
         scale: args.scale,

@@ -8,17 +8,36 @@ use std::path::Path;
 /// Rows of `SCENE_TEXELS_WIDTH` texels that a scene image may have: `maxImageDimension2D` of
 /// lavapipe and of most desktop GPUs. Each default below is what fits in such images.
 const IMAGE_ROWS: u64 = 16384;
-/// Texels of one scene image (`crate::gpu::texels`).
-const IMAGE_TEXELS: u64 = crate::gpu::SCENE_TEXELS_WIDTH as u64 * IMAGE_ROWS;
+
+/// The limits of the device a scene is rendered on that bound what it can hold (the fields of
+/// `blueshift_device::DeviceInfo` of the same names). The loader's budget follows from them
+/// ([`LoadBudget::for_device`]), so a file the device cannot hold is refused from its counts,
+/// before it is expanded, rather than after seconds of loading and a BVH build.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DeviceLimits {
+    /// Each scene array is checked against it ([`crate::Scene::check_limits`]).
+    pub max_storage_buffer_range: u64,
+    /// Rows of each scene image.
+    pub max_image_dimension_2d: u32,
+    /// Bytes the device may allocate in all.
+    pub memory_budget: u64,
+}
+
+/// Device bytes of the scene images per triangle: its triangle and shading records and, at
+/// worst, two BVH nodes (`crate::gpu::texels`).
+const IMAGE_BYTES_PER_TRIANGLE: u64 = 16
+    * (crate::gpu::TRIANGLE_TEXELS + crate::gpu::SHADING_TEXELS + 2 * crate::gpu::NODE_TEXELS)
+        as u64;
 
 /// The most a scene may hold; larger scenes are refused while loading, before they are read
-/// (the device's own limits are checked again when the scene is uploaded).
+/// (the device's own limits are checked again, exactly, when the scene is uploaded).
 ///
-/// The defaults are what one device with `maxImageDimension2D` 16384 can hold in the scene
-/// images (`crate::gpu::texels`): four texels per triangle and per BVH pair, at most four per
-/// light, and four texture texels per atlas texel. The loaded scene holds about 100 bytes per
-/// triangle and 4 per texture texel; loading, building its GPU form and writing its texels
-/// for the upload peak at about 245 bytes per triangle, plus the file (docs/architecture.md).
+/// The default is what a device with `maxImageDimension2D` 16384 and no other limit can hold
+/// in the scene images (`crate::gpu::texels`): four texels per triangle and per BVH pair, at
+/// most four per light, and four texture texels per atlas texel. The commands use
+/// [`LoadBudget::for_device`]. The loaded scene holds about 100 bytes per triangle and 4 per
+/// texture texel; loading, building its GPU form and writing its texels for the upload peak
+/// at about 245 bytes per triangle, plus the file (docs/architecture.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LoadBudget {
     /// Triangles after instancing: each mesh's triangles times the nodes that draw it.
@@ -30,16 +49,78 @@ pub struct LoadBudget {
     /// Texels of all texture images together, read from each image's header. An image that
     /// would go over is skipped with a warning, as an undecodable one is.
     pub texels: u64,
+    /// The device the budget was derived from, named in the refusal.
+    pub device: Option<DeviceLimits>,
 }
 
 impl Default for LoadBudget {
     fn default() -> Self {
-        let triangles = IMAGE_TEXELS / 4;
+        let mut budget = LoadBudget::for_device(&DeviceLimits {
+            max_storage_buffer_range: u64::MAX,
+            max_image_dimension_2d: IMAGE_ROWS as u32,
+            memory_budget: u64::MAX,
+        });
+        budget.device = None;
+        budget
+    }
+}
+
+impl LoadBudget {
+    /// The most `device` can hold of each kind alone: a scene of this many triangles (and
+    /// nothing else) passes [`crate::Scene::check_limits`] and fits the scene images and the
+    /// memory budget; one more triangle does not. A scene near several limits at once can
+    /// still be refused by `check_limits`, which is cheap (before the BVH is built).
+    pub fn for_device(device: &DeviceLimits) -> Self {
+        use crate::gpu::{BvhNode, GpuLight, GpuTriangle, SCENE_TEXELS_WIDTH, TriangleShading};
+        let range = device.max_storage_buffer_range;
+        let image = SCENE_TEXELS_WIDTH as u64 * device.max_image_dimension_2d as u64;
+        let size = |bytes: usize| bytes as u64;
+        // `Scene::check_limits`: (2n - 1) BVH nodes, n triangle and shading records.
+        let triangles = [
+            (range / size(size_of::<BvhNode>())).saturating_add(1) / 2,
+            range / size(size_of::<GpuTriangle>()),
+            range / size(size_of::<TriangleShading>()),
+            image / 4,
+            device.memory_budget / IMAGE_BYTES_PER_TRIANGLE,
+        ];
+        // One record per light plus one (the table is never empty), 16 bytes each.
+        let lights = [
+            (range / size(size_of::<GpuLight>())).saturating_sub(1),
+            image / 4,
+            device.memory_budget / 16,
+        ];
+        // Four bytes per texture texel, four texels per image texel.
+        let texels = [
+            range / 4,
+            image.saturating_mul(crate::gpu::ATLAS_WORDS_PER_TEXEL as u64),
+            device.memory_budget / 4,
+        ];
+        let min = |v: &[u64]| v.iter().copied().min().unwrap_or(0);
+        let triangles = min(&triangles);
         LoadBudget {
             triangles,
-            vertices: 3 * triangles,
-            lights: IMAGE_TEXELS / 4,
-            texels: IMAGE_TEXELS * 4,
+            vertices: triangles.saturating_mul(3),
+            lights: min(&lights),
+            texels: min(&texels),
+            device: Some(*device),
+        }
+    }
+
+    /// Where the limits come from, for a refusal.
+    fn basis(&self) -> String {
+        let bytes = |b: u64| match b {
+            b if b % (1 << 20) == 0 => format!("{} MiB", b >> 20),
+            b => format!("{b} bytes"),
+        };
+        match &self.device {
+            Some(d) => format!(
+                "what this device holds: maxStorageBufferRange {}, maxImageDimension2D {}, \
+                 memory budget {}",
+                bytes(d.max_storage_buffer_range),
+                d.max_image_dimension_2d,
+                bytes(d.memory_budget)
+            ),
+            None => format!("what scene images of {IMAGE_ROWS} rows hold"),
         }
     }
 }
@@ -99,6 +180,7 @@ pub(super) fn count(
             what,
             count,
             limit,
+            basis: budget.basis(),
         })
     };
     let refusal = over(

@@ -1,0 +1,138 @@
+//! The loader's budget derived from a device's limits ([`LoadBudget::for_device`]) is exactly
+//! what that device holds: a scene at the budget passes the device checks that come after
+//! loading, one triangle more is refused by the loader from its counts (before the scene is
+//! expanded), and the same file loaded without the device's budget is then refused by those
+//! later checks, so the budget refuses nothing the device could hold.
+
+use blueshift_scene::presets::hostile;
+use blueshift_scene::{DeviceLimits, LoadBudget, LoadOptions, Scene, SceneError, SceneGpu};
+
+fn load(bytes: &[u8], budget: LoadBudget) -> Result<Scene, SceneError> {
+    let options = LoadOptions {
+        quiet: true,
+        budget,
+        ..Default::default()
+    };
+    Scene::from_slice(bytes, None, &options)
+}
+
+/// Whether every scene image of `scene` fits `rows` rows (what `SceneImages` checks against
+/// `maxImageDimension2D`).
+fn images_fit(scene: &Scene, rows: u32) -> bool {
+    let gpu = SceneGpu::build(scene);
+    gpu.texel_sources().iter().all(|s| s.extent().1 <= rows)
+}
+
+/// `n` distinct triangles (one per node, each node moved along z: no duplicates).
+fn triangles(n: u64) -> Vec<u8> {
+    hostile::instanced(n as usize, 1)
+}
+
+#[test]
+fn the_storage_range_budget_is_the_boundary_of_check_limits() {
+    // (The node buffer, 36 bytes a node and 2n - 1 nodes, is the first to overflow.)
+    for range in [4 << 10, 64 << 10, 1 << 20] {
+        let device = DeviceLimits {
+            max_storage_buffer_range: range,
+            max_image_dimension_2d: 16384,
+            memory_budget: u64::MAX,
+        };
+        let budget = LoadBudget::for_device(&device);
+        let n = budget.triangles;
+        assert!(n > 0 && n < LoadBudget::default().triangles, "{range}: {n}");
+        let at = load(&triangles(n), budget).expect("a scene at the budget loads");
+        assert_eq!(at.triangles.len() as u64, n, "{range}");
+        at.check_limits(range).expect("and fits the device");
+        SceneGpu::build(&at)
+            .check_limits(range)
+            .expect("exactly, once built");
+
+        let over = triangles(n + 1);
+        match load(&over, budget) {
+            Err(SceneError::OverBudget { count, limit, .. }) => {
+                assert_eq!((count, limit), (n + 1, n), "{range}")
+            }
+            other => panic!("{range}: one triangle over the budget: {other:?}"),
+        }
+        let unbounded = load(&over, LoadBudget::default()).expect("the default budget loads it");
+        assert!(
+            matches!(
+                unbounded.check_limits(range),
+                Err(SceneError::OverLimit { .. })
+            ),
+            "{range}: the device refuses what the budget refused"
+        );
+    }
+}
+
+#[test]
+fn the_image_budget_is_the_boundary_of_the_scene_images() {
+    for rows in [1, 3] {
+        let device = DeviceLimits {
+            max_storage_buffer_range: u64::MAX,
+            max_image_dimension_2d: rows,
+            memory_budget: u64::MAX,
+        };
+        let budget = LoadBudget::for_device(&device);
+        let n = budget.triangles;
+        let at = load(&triangles(n), budget).expect("a scene at the budget loads");
+        assert!(images_fit(&at, rows), "{rows} rows: {n} triangles");
+        assert!(matches!(
+            load(&triangles(n + 1), budget),
+            Err(SceneError::OverBudget { .. })
+        ));
+        let over = load(&triangles(n + 1), LoadBudget::default()).expect("loads unbounded");
+        assert!(!images_fit(&over, rows), "{rows} rows: {} triangles", n + 1);
+    }
+}
+
+#[test]
+fn the_memory_budget_bounds_the_scene_images() {
+    // 16 bytes a texel: a triangle's record, its shading and two BVH nodes (4 + 4 + 2 x 2).
+    let per_triangle = 16 * 12;
+    let device = DeviceLimits {
+        max_storage_buffer_range: u64::MAX,
+        max_image_dimension_2d: 16384,
+        memory_budget: 1000 * per_triangle + per_triangle / 2,
+    };
+    let budget = LoadBudget::for_device(&device);
+    assert_eq!(budget.triangles, 1000);
+    let at = load(&triangles(1000), budget).expect("at the budget");
+    let gpu = SceneGpu::build(&at);
+    let held: u64 = gpu.texel_sources()[..3]
+        .iter()
+        .map(|s| 16 * s.len() as u64)
+        .sum();
+    assert!(held <= device.memory_budget, "{held} bytes");
+    let e = load(&triangles(1001), budget).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        msg.contains("1001 triangles") && msg.contains("limit of 1000"),
+        "{msg}"
+    );
+    assert!(msg.contains("memory budget 192096 bytes"), "{msg}");
+}
+
+#[test]
+fn the_default_budget_is_that_of_an_unbounded_device_with_16384_rows() {
+    let unbounded = LoadBudget::for_device(&DeviceLimits {
+        max_storage_buffer_range: u64::MAX,
+        max_image_dimension_2d: 16384,
+        memory_budget: u64::MAX,
+    });
+    assert_eq!(
+        LoadBudget {
+            device: None,
+            ..unbounded
+        },
+        LoadBudget::default()
+    );
+    // Tighter devices never get more.
+    let small = LoadBudget::for_device(&DeviceLimits {
+        max_storage_buffer_range: 128 << 20,
+        max_image_dimension_2d: 16384,
+        memory_budget: 2 << 30,
+    });
+    assert!(small.triangles < unbounded.triangles && small.lights < unbounded.lights);
+    assert!(small.texels < unbounded.texels && small.vertices == 3 * small.triangles);
+}
