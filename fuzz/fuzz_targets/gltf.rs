@@ -2,7 +2,7 @@
 //! file system. A scene that loads is also built for the GPU (BVH, light CDF, texture atlas)
 //! and checked against a device limit, as `blueshift render` does.
 #![no_main]
-use blueshift_scene::{LoadOptions, Scene, SceneError, SceneGpu};
+use blueshift_scene::{DeviceLimits, LoadOptions, Scene, SceneError, SceneGpu};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -12,7 +12,11 @@ fuzz_target!(|data: &[u8]| {
     };
     match Scene::from_slice(data, None, &options) {
         Ok(scene) => {
-            if scene.check_limits(16 << 20).is_ok() && scene.triangles.len() <= 4096 {
+            let limits = DeviceLimits {
+                max_storage_buffer_range: 16 << 20,
+                ..DeviceLimits::LAVAPIPE
+            };
+            if scene.check_limits(&limits).is_ok() && scene.triangles.len() <= 4096 {
                 let gpu = SceneGpu::build(&scene);
                 let _ = gpu.check_limits(16 << 20);
             }

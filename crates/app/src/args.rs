@@ -187,16 +187,13 @@ impl SceneArgs {
     pub fn load_scene(&self, device: &blueshift_device::DeviceInfo) -> Result<Scene> {
         let spec = self.scene.as_str();
         let path = self.scene_path();
-        let (environment, map_warning) = self.lights.source()?;
+        let limits = blueshift_render::scene_limits(device);
+        let (environment, map_warning) = self.lights.source(&limits)?;
         let opts = blueshift_scene::LoadOptions {
             environment,
             quiet: true,
             allow_outside_paths: self.allow_outside_paths,
-            budget: blueshift_scene::LoadBudget::for_device(&blueshift_scene::DeviceLimits {
-                max_storage_buffer_range: device.max_storage_buffer_range,
-                max_image_dimension_2d: device.max_image_dimension_2d,
-                memory_budget: device.memory_budget,
-            }),
+            budget: blueshift_scene::LoadBudget::for_device(&limits),
         };
         let looks_like_preset = !spec.contains(['/', '.']);
         let mut scene = match Scene::load_with(&path, &opts) {

@@ -51,14 +51,18 @@ impl Default for LightArgs {
 
 impl LightArgs {
     /// The environment the flags name, with the map's warning (bad texels), if any.
-    pub fn source(&self) -> Result<(Option<EnvironmentSource>, Option<String>)> {
+    /// A map `device` cannot hold is refused from its header, before it is decoded.
+    pub fn source(
+        &self,
+        device: &blueshift_scene::DeviceLimits,
+    ) -> Result<(Option<EnvironmentSource>, Option<String>)> {
         let Some(spec) = &self.environment else {
             return Ok((None, None));
         };
         if let Some(rgb) = parse_rgb(spec)? {
             return Ok((Some(EnvironmentSource::Constant(rgb)), None));
         }
-        let (map, warning) = EnvMap::load(Path::new(spec)).context("--environment")?;
+        let (map, warning) = EnvMap::load_for(Path::new(spec), device).context("--environment")?;
         Ok((Some(EnvironmentSource::Map(Arc::new(map))), warning))
     }
 

@@ -131,13 +131,23 @@ fn a_directory_in_the_way_of_a_frame_is_named() {
 fn out_of_memory_names_the_resource_or_the_passes() {
     let c = Case::new();
     // A real budget check (the device's largest heap, lowered here): the first allocation
-    // that does not fit is named, before any work is done.
-    let o = c.render(&[], &[("BLUESHIFT_MEMORY_BUDGET", "300000")]);
+    // that does not fit is named, before any work is done. (The scene images, 7 rows of 64 KiB
+    // and 192 bytes a triangle, fit 1 MB; the masks and frame buffers then do not.)
+    let o = c.render(&[], &[("BLUESHIFT_MEMORY_BUDGET", "1000000")]);
     c.expect_error(
         &o,
         &[
             "out of memory allocating '",
-            "the device memory budget is 300000 bytes",
+            "the device memory budget is 1000000 bytes",
+        ],
+    );
+    // Below what the scene images alone need: the loader refuses the scene from its counts.
+    let o = c.render(&[], &[("BLUESHIFT_MEMORY_BUDGET", "300000")]);
+    c.expect_error(
+        &o,
+        &[
+            "36 triangles after instancing, over the loader's limit of 0",
+            "memory budget 300000 bytes",
         ],
     );
     // A submission the driver could not run: the error lists the passes in it.

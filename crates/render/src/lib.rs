@@ -140,6 +140,16 @@ impl Drop for Renderer {
     }
 }
 
+/// What `info`'s device can hold of a scene: what the loader's budget
+/// ([`blueshift_scene::LoadBudget::for_device`]) and [`Scene::check_limits`] are held to.
+pub fn scene_limits(info: &blueshift_device::DeviceInfo) -> blueshift_scene::DeviceLimits {
+    blueshift_scene::DeviceLimits {
+        max_storage_buffer_range: info.max_storage_buffer_range,
+        max_image_dimension_2d: info.max_image_dimension_2d,
+        memory_budget: info.memory_budget,
+    }
+}
+
 impl Renderer {
     pub fn new(
         dev: &Device,
@@ -152,7 +162,7 @@ impl Renderer {
         // scene that will not fit costs seconds and gigabytes for nothing (the node buffer is
         // bounded by its worst case here and checked exactly once built).
         scene
-            .check_limits(dev.info().max_storage_buffer_range)
+            .check_limits(&scene_limits(dev.info()))
             .map_err(|e| blueshift_trace::TraceError::Scene(e.to_string()))?;
         let gpu_scene = SceneGpu::build(scene);
         let scene_buffers = SceneBuffers::new(dev, &gpu_scene)?;

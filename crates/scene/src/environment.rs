@@ -97,6 +97,23 @@ pub enum EnvMapError {
         width: u32,
         height: u32,
     },
+
+    /// Within the map limits but not within the device's light image (decided from the
+    /// header, before anything is decoded).
+    #[error(
+        "{}: environment map is {width}x{height}: with its row table it needs {texels} texels \
+         of the light image, over the {room} this device holds (maxImageDimension2D = {rows} \
+         rows of 4096 texels)",
+        path.display()
+    )]
+    OverDevice {
+        path: PathBuf,
+        width: u32,
+        height: u32,
+        texels: u64,
+        room: u64,
+        rows: u32,
+    },
 }
 
 /// The largest environment map file read: a 16384 x 8192 map of 32-bit float RGBA.
@@ -107,6 +124,23 @@ impl EnvMap {
     /// refused before it is opened). Texels that are NaN, infinite or
     /// negative become 0, reported in the returned warning (one line).
     pub fn load(path: &Path) -> Result<(EnvMap, Option<String>), EnvMapError> {
+        Self::load_within(path, None)
+    }
+
+    /// [`EnvMap::load`], refusing from the header a map that `device` cannot hold in its light
+    /// image (so a map that will be refused is not decoded first: a 16384 x 8192 map is
+    /// 1.5 GiB of texels). [`crate::Scene::check_limits`] checks it exactly with the scene.
+    pub fn load_for(
+        path: &Path,
+        device: &crate::DeviceLimits,
+    ) -> Result<(EnvMap, Option<String>), EnvMapError> {
+        Self::load_within(path, Some(device))
+    }
+
+    fn load_within(
+        path: &Path,
+        device: Option<&crate::DeviceLimits>,
+    ) -> Result<(EnvMap, Option<String>), EnvMapError> {
         let bytes = crate::read_regular(path, MAX_MAP_FILE_BYTES).map_err(|e| match e.kind() {
             std::io::ErrorKind::NotFound => EnvMapError::NotFound {
                 path: path.to_path_buf(),
@@ -116,11 +150,20 @@ impl EnvMap {
                 source: e,
             },
         })?;
-        Self::from_bytes(path, &bytes)
+        Self::from_bytes_within(path, &bytes, device)
     }
 
     /// Decodes a map from memory; `path` gives the format (by extension) and labels errors.
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<(EnvMap, Option<String>), EnvMapError> {
+        Self::from_bytes_within(path, bytes, None)
+    }
+
+    /// [`EnvMap::from_bytes`] with the device check of [`EnvMap::load_for`].
+    pub fn from_bytes_within(
+        path: &Path,
+        bytes: &[u8],
+        device: Option<&crate::DeviceLimits>,
+    ) -> Result<(EnvMap, Option<String>), EnvMapError> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -139,7 +182,7 @@ impl EnvMap {
                 path: path.to_path_buf(),
             });
         }
-        let (width, height, mut texels) = decode::texels(path, bytes, format)?;
+        let (width, height, mut texels) = decode::texels(path, bytes, format, device)?;
         // (RGBE cannot hold these; EXR can.)
         let mut bad = 0usize;
         for c in &mut texels {

@@ -3,6 +3,8 @@
 //! copy. The size is checked from the header before any pixel is decoded.
 
 use super::{EnvMapError, MAX_ENV_SIDE, MAX_ENV_TEXELS, hdr};
+use crate::DeviceLimits;
+use crate::gpu::{LIGHT_PARAMS_TEXELS, SCENE_TEXELS_WIDTH};
 use glam::Vec3;
 use std::path::Path;
 
@@ -13,16 +15,39 @@ pub(super) const MAX_ENV_DECODE_BYTES: u64 = MAX_ENV_TEXELS * 16;
 
 /// A map of `width x height` texels is within the limits: 2x1 to [`MAX_ENV_SIDE`] a side,
 /// at most [`MAX_ENV_TEXELS`] in all.
-pub(super) fn check_size(path: &Path, width: u32, height: u32) -> Result<(), EnvMapError> {
+/// and, with a `device`, within its light image: the map's texels and its row table (one
+/// per row) beside the one light record the image always holds (`SceneGpu::texel_sources`).
+pub(super) fn check_size(
+    path: &Path,
+    width: u32,
+    height: u32,
+    device: Option<&DeviceLimits>,
+) -> Result<(), EnvMapError> {
     let sides = (2..=MAX_ENV_SIDE).contains(&width) && (1..=MAX_ENV_SIDE).contains(&height);
-    if sides && u64::from(width) * u64::from(height) <= MAX_ENV_TEXELS {
-        return Ok(());
+    let texels = u64::from(width) * u64::from(height);
+    if !(sides && texels <= MAX_ENV_TEXELS) {
+        return Err(EnvMapError::Size {
+            path: path.to_path_buf(),
+            width,
+            height,
+        });
     }
-    Err(EnvMapError::Size {
-        path: path.to_path_buf(),
-        width,
-        height,
-    })
+    if let Some(d) = device {
+        let image = u64::from(SCENE_TEXELS_WIDTH) * u64::from(d.max_image_dimension_2d);
+        let room = image.saturating_sub(u64::from(LIGHT_PARAMS_TEXELS));
+        let needed = texels + u64::from(height);
+        if needed > room {
+            return Err(EnvMapError::OverDevice {
+                path: path.to_path_buf(),
+                width,
+                height,
+                texels: needed,
+                room,
+                rows: d.max_image_dimension_2d,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The decoder's limits for a map within [`check_size`]: its sides, and memory for the
@@ -53,6 +78,7 @@ pub(super) fn texels(
     path: &Path,
     bytes: &[u8],
     format: image::ImageFormat,
+    device: Option<&DeviceLimits>,
 ) -> Result<(u32, u32, Vec<Vec3>), EnvMapError> {
     let decode = |message: String| EnvMapError::Decode {
         path: path.to_path_buf(),
@@ -60,7 +86,7 @@ pub(super) fn texels(
     };
     if format == image::ImageFormat::Hdr {
         let (width, height, data) = guarded(path, || hdr::header(bytes))?;
-        check_size(path, width, height)?;
+        check_size(path, width, height, device)?;
         let texels = guarded(path, || hdr::pixels(data, width, height))?;
         return Ok((width, height, texels));
     }
@@ -76,7 +102,7 @@ pub(super) fn texels(
             .into_dimensions()
             .map_err(|e| e.to_string())
     })?;
-    check_size(path, width, height)?;
+    check_size(path, width, height, device)?;
     let decoded = std::panic::catch_unwind(|| reader(decode_limits()).decode())
         .map_err(|_| decode("the decoder failed on malformed data".into()))?
         .map_err(|e| match e {
@@ -88,7 +114,7 @@ pub(super) fn texels(
             e => decode(e.to_string()),
         })?;
     // The header's size again, as decoded.
-    check_size(path, decoded.width(), decoded.height())?;
+    check_size(path, decoded.width(), decoded.height(), device)?;
     let (width, height) = (decoded.width(), decoded.height());
     let rgb = decoded.into_rgb32f().into_raw();
     // The decoder's buffer becomes the map's (a copy only if its capacity is not whole texels).

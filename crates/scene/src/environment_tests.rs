@@ -132,6 +132,47 @@ fn the_size_limit_is_checked_from_the_header_and_named() {
     assert_eq!(map.texels[5], Vec3::new(1.0, 1.0, 1.0));
 }
 
+#[test]
+fn a_map_the_device_cannot_hold_is_refused_from_the_header() {
+    // A device whose scene images have 2 rows: 8192 texels, 3 of them the light record.
+    let device = crate::DeviceLimits {
+        max_image_dimension_2d: 2,
+        ..crate::DeviceLimits::LAVAPIPE
+    };
+    let within =
+        |w, h| EnvMap::from_bytes_within(Path::new("m.hdr"), &hdr_header(w, h), Some(&device));
+    // 128 x 63 + 63 = 8127 texels fit: the header passes and the missing pixels are the error.
+    assert!(matches!(within(128, 63), Err(EnvMapError::Decode { .. })));
+    // 128 x 64 + 64 = 8256 do not: refused before the (absent) pixels are decoded.
+    let e = within(128, 64).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            EnvMapError::OverDevice {
+                texels: 8256,
+                room: 8189,
+                rows: 2,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("maxImageDimension2D = 2"), "{e}");
+    // What `Scene::check_limits` then accepts, for the map the header check let through.
+    let options = crate::LoadOptions {
+        quiet: true,
+        ..Default::default()
+    };
+    let one = crate::presets::hostile::instanced(1, 1);
+    let mut scene = crate::Scene::from_slice(&one, None, &options).expect("one triangle");
+    scene.environment_map = Some(std::sync::Arc::new(EnvMap::constant(128, 63, Vec3::ONE)));
+    scene
+        .check_limits(&device)
+        .expect("the light image holds it");
+    scene.environment_map = Some(std::sync::Arc::new(EnvMap::constant(128, 64, Vec3::ONE)));
+    assert!(scene.check_limits(&device).is_err());
+}
+
 /// A real 16384 x 4096 `.hdr` (4 MiB run-length encoded, 0.8 GB of texels): the map the
 /// `image` crate's default limit refused. Too heavy for every run:
 /// `cargo test -p blueshift-scene --lib -- --ignored`.
@@ -167,7 +208,7 @@ fn a_16384_by_4096_hdr_decodes() {
 #[test]
 fn the_decoder_may_allocate_what_any_map_within_the_limit_needs() {
     for (w, h) in [(16384, 8192), (16384, 4096), (8192, 16384), (2, 1)] {
-        check_size(Path::new("m.hdr"), w, h).expect("within the size limit");
+        check_size(Path::new("m.hdr"), w, h, None).expect("within the size limit");
         for bytes_per_texel in [12, 16] {
             let bytes = u64::from(w) * u64::from(h) * bytes_per_texel;
             decode_limits()

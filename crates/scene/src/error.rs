@@ -188,7 +188,7 @@ pub enum SceneError {
     #[error("{}: the scene has no triangles to render ({reason})", path.display())]
     EmptyScene { path: PathBuf, reason: String },
 
-    /// A GPU buffer would exceed the device's `maxStorageBufferRange`.
+    /// A scene array would exceed the device's `maxStorageBufferRange`.
     #[error(
         "the {buffer} buffer needs {size} bytes ({size_mib:.1} MiB), over the device limit \
          maxStorageBufferRange = {limit} bytes ({limit_mib:.1} MiB)"
@@ -200,6 +200,21 @@ pub enum SceneError {
         limit: u64,
         limit_mib: f64,
     },
+
+    /// A scene image would need more rows than the device's `maxImageDimension2D`.
+    #[error(
+        "the {image} image needs {rows} rows of 4096 texels, over the device limit \
+         maxImageDimension2D = {limit}"
+    )]
+    ImageOverLimit {
+        image: &'static str,
+        rows: u64,
+        limit: u32,
+    },
+
+    /// The scene images together would need more than the device's memory budget.
+    #[error("the scene images need {mib} MiB, over the device's memory budget of {budget_mib} MiB")]
+    MemoryOverLimit { mib: u64, budget_mib: u64 },
 
     #[error("unknown preset '{name}'; available presets: {available}")]
     UnknownPreset { name: String, available: String },

@@ -11,7 +11,7 @@
 //! # fn main() -> Result<(), blueshift_scene::SceneError> {
 //! use blueshift_scene::{Scene, SceneGpu, Ray};
 //! let scene = Scene::load("assets/scenes/cornell-box.gltf")?;
-//! scene.check_limits(128 << 20)?;
+//! scene.check_limits(&blueshift_scene::DeviceLimits::LAVAPIPE)?;
 //! let gpu = SceneGpu::build(&scene);
 //! let camera = scene.camera_or_default();
 //! let ray = camera.basis(1.0).primary_ray(128, 128, 256, 256);
@@ -27,6 +27,7 @@ mod geometry;
 pub mod gpu;
 mod intersect;
 mod lights;
+mod limits;
 mod load;
 pub mod presets;
 mod scene;
@@ -49,7 +50,8 @@ pub use intersect::{
     occluded,
 };
 pub use lights::{LightKind, PunctualLight};
-pub use load::{DeviceLimits, EnvironmentSource, LoadBudget, LoadOptions, MAX_COORDINATE};
+pub use limits::DeviceLimits;
+pub use load::{EnvironmentSource, LoadBudget, LoadOptions, MAX_COORDINATE};
 pub use scene::{DEFAULT_ENVIRONMENT, Image, Material, Scene, Texture, Triangle, Wrap};
 
 /// Result alias for this crate.

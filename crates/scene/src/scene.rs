@@ -1,7 +1,7 @@
 //! The CPU scene: world-space triangles, materials, textures, camera, environment.
 
 use crate::load::{self, LoadOptions};
-use crate::{Aabb, Camera, EnvMap, EnvSampling, PunctualLight, Result, SceneError, gpu};
+use crate::{Aabb, Camera, EnvMap, EnvSampling, PunctualLight, Result};
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -216,63 +216,5 @@ impl Scene {
              with --environment R,G,B or --environment FILE.hdr|.exr",
             self.source.display()
         ))
-    }
-
-    /// Checks that every GPU buffer of this scene fits `maxStorageBufferRange` before building
-    /// anything. The BVH node buffer is bounded by its worst case (2n - 1 nodes); use
-    /// [`crate::SceneGpu::check_limits`] for the exact sizes after the build.
-    pub fn check_limits(&self, max_storage_buffer_range: u64) -> Result<()> {
-        let n = self.triangles.len() as u64;
-        let emissive = self
-            .triangles
-            .iter()
-            .filter(|t| {
-                self.materials
-                    .get(t.material as usize)
-                    .is_some_and(|m| m.emissive.max_element() > 0.0)
-            })
-            .count() as u64;
-        let texels: u64 = self
-            .images
-            .iter()
-            .map(|i| i.width as u64 * i.height as u64)
-            .sum();
-        let sizes = [
-            (
-                "BVH node",
-                (2 * n).saturating_sub(1) * size_of::<gpu::BvhNode>() as u64,
-            ),
-            ("BVH triangle", n * size_of::<gpu::GpuTriangle>() as u64),
-            (
-                "triangle shading",
-                n * size_of::<gpu::TriangleShading>() as u64,
-            ),
-            (
-                "material",
-                self.materials.len() as u64 * size_of::<gpu::GpuMaterial>() as u64,
-            ),
-            (
-                "texture table",
-                self.textures.len() as u64 * size_of::<gpu::GpuTexture>() as u64,
-            ),
-            ("texel", texels * 4),
-            (
-                "light",
-                (emissive + self.lights.len() as u64 + 1) * size_of::<gpu::GpuLight>() as u64
-                    + self
-                        .environment_map
-                        .as_ref()
-                        .map_or(0, |m| (m.texels.len() as u64 + m.height as u64) * 16),
-            ),
-        ];
-        check_sizes(&sizes, max_storage_buffer_range)
-    }
-}
-
-/// The first buffer over the limit, as an error.
-pub(crate) fn check_sizes(sizes: &[(&'static str, u64)], limit: u64) -> Result<()> {
-    match sizes.iter().find(|(_, size)| *size > limit) {
-        Some(&(buffer, size)) => Err(SceneError::over_limit(buffer, size, limit)),
-        None => Ok(()),
     }
 }

@@ -5,7 +5,9 @@
 //! later checks, so the budget refuses nothing the device could hold.
 
 use blueshift_scene::presets::hostile;
-use blueshift_scene::{DeviceLimits, LoadBudget, LoadOptions, Scene, SceneError, SceneGpu};
+use blueshift_scene::{DeviceLimits, EnvMap, LoadBudget, LoadOptions, Scene, SceneError, SceneGpu};
+use glam::Vec3;
+use std::sync::Arc;
 
 fn load(bytes: &[u8], budget: LoadBudget) -> Result<Scene, SceneError> {
     let options = LoadOptions {
@@ -42,7 +44,7 @@ fn the_storage_range_budget_is_the_boundary_of_check_limits() {
         assert!(n > 0 && n < LoadBudget::default().triangles, "{range}: {n}");
         let at = load(&triangles(n), budget).expect("a scene at the budget loads");
         assert_eq!(at.triangles.len() as u64, n, "{range}");
-        at.check_limits(range).expect("and fits the device");
+        at.check_limits(&device).expect("and fits the device");
         SceneGpu::build(&at)
             .check_limits(range)
             .expect("exactly, once built");
@@ -57,7 +59,7 @@ fn the_storage_range_budget_is_the_boundary_of_check_limits() {
         let unbounded = load(&over, LoadBudget::default()).expect("the default budget loads it");
         assert!(
             matches!(
-                unbounded.check_limits(range),
+                unbounded.check_limits(&device),
                 Err(SceneError::OverLimit { .. })
             ),
             "{range}: the device refuses what the budget refused"
@@ -77,40 +79,51 @@ fn the_image_budget_is_the_boundary_of_the_scene_images() {
         let n = budget.triangles;
         let at = load(&triangles(n), budget).expect("a scene at the budget loads");
         assert!(images_fit(&at, rows), "{rows} rows: {n} triangles");
+        at.check_limits(&device)
+            .expect("and passes the device check");
         assert!(matches!(
             load(&triangles(n + 1), budget),
             Err(SceneError::OverBudget { .. })
         ));
         let over = load(&triangles(n + 1), LoadBudget::default()).expect("loads unbounded");
         assert!(!images_fit(&over, rows), "{rows} rows: {} triangles", n + 1);
+        assert!(matches!(
+            over.check_limits(&device),
+            Err(SceneError::ImageOverLimit { .. })
+        ));
     }
 }
 
 #[test]
 fn the_memory_budget_bounds_the_scene_images() {
-    // 16 bytes a texel: a triangle's record, its shading and two BVH nodes (4 + 4 + 2 x 2).
-    let per_triangle = 16 * 12;
+    // 16 bytes a texel: a triangle's record, its shading and two BVH nodes (4 + 4 + 2 x 2),
+    // plus one row of 4096 texels of each of the seven images that may be left unused.
+    let (per_triangle, rows) = (16 * 12, 7 * 4096 * 16);
     let device = DeviceLimits {
         max_storage_buffer_range: u64::MAX,
         max_image_dimension_2d: 16384,
-        memory_budget: 1000 * per_triangle + per_triangle / 2,
+        memory_budget: rows + 10_000 * per_triangle + per_triangle / 2,
     };
     let budget = LoadBudget::for_device(&device);
-    assert_eq!(budget.triangles, 1000);
-    let at = load(&triangles(1000), budget).expect("at the budget");
-    let gpu = SceneGpu::build(&at);
-    let held: u64 = gpu.texel_sources()[..3]
-        .iter()
-        .map(|s| 16 * s.len() as u64)
-        .sum();
-    assert!(held <= device.memory_budget, "{held} bytes");
-    let e = load(&triangles(1001), budget).unwrap_err();
+    assert_eq!(budget.triangles, 10_000);
+    let at = load(&triangles(10_000), budget).expect("at the budget");
+    at.check_limits(&device).expect("fits the memory budget");
+    let e = load(&triangles(10_001), budget).unwrap_err();
     let msg = e.to_string();
     assert!(
-        msg.contains("1001 triangles") && msg.contains("limit of 1000"),
+        msg.contains("10001 triangles") && msg.contains("limit of 10000"),
         "{msg}"
     );
-    assert!(msg.contains("memory budget 192096 bytes"), "{msg}");
+    assert!(msg.contains("memory budget 2378848 bytes"), "{msg}");
+    // Within those rows of the boundary: a budget a row smaller is refused.
+    let smaller = DeviceLimits {
+        memory_budget: 10_000 * per_triangle - rows,
+        ..device
+    };
+    assert!(matches!(
+        at.check_limits(&smaller),
+        Err(SceneError::MemoryOverLimit { .. })
+    ));
 }
 
 #[test]
@@ -135,4 +148,57 @@ fn the_default_budget_is_that_of_an_unbounded_device_with_16384_rows() {
     });
     assert!(small.triangles < unbounded.triangles && small.lights < unbounded.lights);
     assert!(small.texels < unbounded.texels && small.vertices == 3 * small.triangles);
+}
+
+#[test]
+fn an_environment_map_is_held_to_the_light_image_rows_not_the_storage_range() {
+    // The map is sampled from the light image: an 8192 x 4096 map (512 MiB) is an ordinary
+    // one, and it was refused on lavapipe for its 128 MiB storage-buffer range. Here in small:
+    // a 64 x 32 map (33 KiB of texels) on a device with a 4 KiB range and images of one row.
+    let device = DeviceLimits {
+        max_storage_buffer_range: 4096,
+        max_image_dimension_2d: 1,
+        memory_budget: u64::MAX,
+    };
+    let with_map = |w, h| {
+        let mut scene = load(&triangles(1), LoadBudget::default()).expect("one triangle");
+        scene.environment_map = Some(Arc::new(EnvMap::constant(w, h, Vec3::ONE)));
+        scene
+    };
+    let fits = with_map(64, 32);
+    fits.check_limits(&device)
+        .expect("2048 + 32 texels fit one row");
+    assert!(images_fit(&fits, 1));
+    let over = with_map(128, 32);
+    let e = over.check_limits(&device).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            SceneError::ImageOverLimit {
+                rows: 2,
+                limit: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("environment map"), "{e}");
+    assert!(
+        !images_fit(&over, 1),
+        "the built light image needs two rows too"
+    );
+}
+
+#[test]
+fn the_scene_images_are_held_to_the_memory_budget() {
+    // Seven images of one row each (4096 texels of 16 bytes): 448 KiB in all.
+    let scene = load(&triangles(1), LoadBudget::default()).expect("one triangle");
+    let row = 4096 * 16;
+    let device = |memory_budget| DeviceLimits {
+        memory_budget,
+        ..DeviceLimits::LAVAPIPE
+    };
+    scene.check_limits(&device(7 * row)).expect("fits");
+    let e = scene.check_limits(&device(7 * row - 1)).unwrap_err();
+    assert!(matches!(e, SceneError::MemoryOverLimit { .. }), "{e}");
 }

@@ -3,7 +3,7 @@
 mod common;
 
 use blueshift_scene::presets::{GltfBuilder, MeshData};
-use blueshift_scene::{Scene, SceneError};
+use blueshift_scene::{DeviceLimits, Scene, SceneError};
 use common::{embedded_uri, load, one_quad, write, write_json};
 use serde_json::json;
 
@@ -245,9 +245,13 @@ fn check_limits_names_the_buffer() {
     let dir = tmp();
     let p = write(dir.path(), "quad.gltf", &one_quad().to_gltf_embedded());
     let scene = load(&p).unwrap();
-    scene.check_limits(128 << 20).unwrap();
+    let range = |max_storage_buffer_range| DeviceLimits {
+        max_storage_buffer_range,
+        ..DeviceLimits::LAVAPIPE
+    };
+    scene.check_limits(&range(128 << 20)).unwrap();
     // Two triangles: 2 * 68 shading bytes > 120 (the 3 BVH nodes take 108).
-    let e = scene.check_limits(120).unwrap_err();
+    let e = scene.check_limits(&range(120)).unwrap_err();
     assert!(matches!(e, SceneError::OverLimit { .. }), "{e}");
     let msg = e.to_string();
     assert!(

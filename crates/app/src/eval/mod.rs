@@ -162,7 +162,7 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
     // checked against its limits before the BVH is built.
     let dev = gpu.device()?;
     let scene = args.scene.load_scene(dev.info())?;
-    scene.check_limits(dev.info().max_storage_buffer_range)?;
+    scene.check_limits(&blueshift_render::scene_limits(dev.info()))?;
     let (base, bounds) = (scene.camera_or_default(), scene.bounds());
     let cameras: Vec<CameraPath> = cameras
         .iter()

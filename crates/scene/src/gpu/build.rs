@@ -3,7 +3,8 @@
 use super::lights::{EnvGpu, non_triangle_lights};
 use super::*;
 use crate::geometry::{luminance, srgb_to_linear};
-use crate::scene::{Scene, Wrap, check_sizes};
+use crate::limits::check_sizes;
+use crate::scene::{Scene, Wrap};
 use crate::{Aabb, Bvh, Result, intersect};
 use rayon::prelude::*;
 

@@ -1,7 +1,7 @@
 //! Counting before allocating: what the scene will hold, from the JSON alone (accessor counts,
 //! node references), compared with [`LoadBudget`] before any vertex is read.
 
-use crate::SceneError;
+use crate::{DeviceLimits, SceneError};
 use gltf::mesh::Mode;
 use std::path::Path;
 
@@ -9,25 +9,14 @@ use std::path::Path;
 /// lavapipe and of most desktop GPUs. Each default below is what fits in such images.
 const IMAGE_ROWS: u64 = 16384;
 
-/// The limits of the device a scene is rendered on that bound what it can hold (the fields of
-/// `blueshift_device::DeviceInfo` of the same names). The loader's budget follows from them
-/// ([`LoadBudget::for_device`]), so a file the device cannot hold is refused from its counts,
-/// before it is expanded, rather than after seconds of loading and a BVH build.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct DeviceLimits {
-    /// Each scene array is checked against it ([`crate::Scene::check_limits`]).
-    pub max_storage_buffer_range: u64,
-    /// Rows of each scene image.
-    pub max_image_dimension_2d: u32,
-    /// Bytes the device may allocate in all.
-    pub memory_budget: u64,
-}
-
 /// Device bytes of the scene images per triangle: its triangle and shading records and, at
 /// worst, two BVH nodes (`crate::gpu::texels`).
 const IMAGE_BYTES_PER_TRIANGLE: u64 = 16
     * (crate::gpu::TRIANGLE_TEXELS + crate::gpu::SHADING_TEXELS + 2 * crate::gpu::NODE_TEXELS)
         as u64;
+/// Device bytes of the scene images that do not grow with the triangles: one row of each of
+/// the seven images at least, the last rows of the three triangle arrays at most partly used.
+const IMAGE_BYTES_FIXED: u64 = 7 * 16 * crate::gpu::SCENE_TEXELS_WIDTH as u64;
 
 /// The most a scene may hold; larger scenes are refused while loading, before they are read
 /// (the device's own limits are checked again, exactly, when the scene is uploaded).
@@ -67,8 +56,9 @@ impl Default for LoadBudget {
 
 impl LoadBudget {
     /// The most `device` can hold of each kind alone: a scene of this many triangles (and
-    /// nothing else) passes [`crate::Scene::check_limits`] and fits the scene images and the
-    /// memory budget; one more triangle does not. A scene near several limits at once can
+    /// nothing else) passes [`crate::Scene::check_limits`]; where the storage-buffer range or
+    /// the image rows bound it, one more triangle does not (the memory budget is met within
+    /// the rows a scene image may leave unused). A scene near several limits at once can
     /// still be refused by `check_limits`, which is cheap (before the BVH is built).
     pub fn for_device(device: &DeviceLimits) -> Self {
         use crate::gpu::{BvhNode, GpuLight, GpuTriangle, SCENE_TEXELS_WIDTH, TriangleShading};
@@ -81,7 +71,7 @@ impl LoadBudget {
             range / size(size_of::<GpuTriangle>()),
             range / size(size_of::<TriangleShading>()),
             image / 4,
-            device.memory_budget / IMAGE_BYTES_PER_TRIANGLE,
+            device.memory_budget.saturating_sub(IMAGE_BYTES_FIXED) / IMAGE_BYTES_PER_TRIANGLE,
         ];
         // One record per light plus one (the table is never empty), 16 bytes each.
         let lights = [

@@ -49,7 +49,7 @@ mod primitive;
 mod uri;
 mod warnings;
 
-pub use budget::{DeviceLimits, LoadBudget};
+pub use budget::LoadBudget;
 pub(crate) use warnings::Warnings;
 
 use crate::scene::{Image, Material, Scene, Texture};
