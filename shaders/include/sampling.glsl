@@ -5,20 +5,14 @@
 #include "rng.glsl"
 #include "generated/sobol.glsl"
 
-// Unscrambled Sobol point `index`, dimension `dim` (0..3), bit-reversed (the form the nested
-// uniform scramble consumes). Loop-free, no table lookups: dimension 0 is the index itself;
-// dimension 1's generator matrix is Pascal's triangle mod 2, i.e. the superset-XOR transform
-// of the index bits (five butterfly steps); dimensions 2 and 3 XOR their direction numbers
-// under the index bits, unrolled with constant indices. (llvmpipe runs a dynamically indexed
-// const array as a per-lane gather and counts loop iterations against a 65535 limit.)
-#define SOBOL_STEP(k)                                                   \
-    {                                                                   \
-        uint m = uint(int(index << (31u - (k))) >> 31);                 \
-        x2 ^= SOBOL_DIRECTIONS[64u + (k)] & m;                          \
-        x3 ^= SOBOL_DIRECTIONS[96u + (k)] & m;                          \
-    }
-#define SOBOL_STEP4(k) SOBOL_STEP(k) SOBOL_STEP((k) + 1u) SOBOL_STEP((k) + 2u) SOBOL_STEP((k) + 3u)
-
+// Unscrambled Sobol point `index`, dimension `dim` (0 or 1), bit-reversed (the form the nested
+// uniform scramble consumes). Every sampler here takes Sobol's points two dimensions at a time
+// (SOBOL_GROUP_DIMS = 2, block nets and HBO+19 pairs), so only these two are computed:
+// dimension 0 is the index itself; dimension 1's generator matrix is Pascal's triangle mod 2,
+// i.e. the superset-XOR transform of the index bits (five butterfly steps). Loop-free and
+// without table lookups (llvmpipe runs a dynamically indexed const array as a per-lane gather;
+// the 64 masked XORs of dimensions 2 and 3, computed for every call whatever `dim` was, were a
+// large part of the samplers' cost).
 uint sobol_reversed(uint index, uint dim) {
     uint x1 = index;
     x1 ^= (x1 & 0xaaaaaaaau) >> 1u;
@@ -26,16 +20,10 @@ uint sobol_reversed(uint index, uint dim) {
     x1 ^= (x1 & 0xf0f0f0f0u) >> 4u;
     x1 ^= (x1 & 0xff00ff00u) >> 8u;
     x1 ^= (x1 & 0xffff0000u) >> 16u;
-    uint x2 = 0u, x3 = 0u;
-    SOBOL_STEP4(0u) SOBOL_STEP4(4u) SOBOL_STEP4(8u) SOBOL_STEP4(12u)
-    SOBOL_STEP4(16u) SOBOL_STEP4(20u) SOBOL_STEP4(24u) SOBOL_STEP4(28u)
-    return dim == 0u ? index : dim == 1u ? x1 : bitfieldReverse(dim == 2u ? x2 : x3);
+    return dim == 0u ? index : x1;
 }
 
-#undef SOBOL_STEP4
-#undef SOBOL_STEP
-
-// Unscrambled Sobol point `index`, dimension `dim` (0..3), MSB-aligned (CPU twin: sobol()).
+// Unscrambled Sobol point `index`, dimension `dim` (0 or 1), MSB-aligned (CPU twin: sobol()).
 uint sobol(uint index, uint dim) { return bitfieldReverse(sobol_reversed(index, dim)); }
 
 // Vegdahl's revised LK-style hash on bit-reversed values (see sobol.rs for why this one).
