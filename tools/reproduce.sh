@@ -180,6 +180,12 @@ headline() { # report.md
   awk '/^## Per frame \/ accumulated along the motion/ { on = 1; next } /^## / { on = 0 } on && /^[|]/' "$1"
 }
 
+# The same at equal frame time: the ratios times the square root of each method's frame time
+# over white's, and that frame-time ratio.
+equal_time() { # report.md
+  awk '/^## Per frame \/ accumulated at equal frame time/ { on = 1; next } /^## / { on = 0 } on && /^[|]/' "$1"
+}
+
 # From a headline table (stdin): per configuration and for the geometric mean over them, the
 # named method (preset or comparison baseline) with the lowest per-frame and the lowest
 # accumulated ratio (spelled-out experiment forms and `white` left out), and the default's own
@@ -336,12 +342,16 @@ for r in "${selected[@]}"; do
     echo
     headline "$out/report.md"
     echo
+    echo "**At equal frame time: the same times the square root of the frame-time ratio to \`white\` (in parentheses)**"
+    echo
+    equal_time "$out/report.md"
+    echo
     tables "$out/report.md"
     echo
   } > "$body"
   splice "reproduce:$name" "$work" "$body"
   if [ "$name" = motion ] && ((!quick)); then
-    { echo; headline "$out/report.md"; echo; } > "$head_body"
+    { echo; headline "$out/report.md"; echo; echo "At equal frame time (the same times the square root of the frame-time ratio to \`white\`, in parentheses):"; echo; equal_time "$out/report.md"; echo; } > "$head_body"
     splice "reproduce:$name" README.md "$head_body"
     { echo; headline "$out/report.md" | picks; echo; } > "$head_body"
     splice reproduce:pick README.md "$head_body"

@@ -201,6 +201,9 @@ impl SceneArgs {
             // The scene error names the file.
             r => r?,
         };
+        // The scene then holds the only reference to the map: scaling or rotating it below
+        // changes it in place instead of copying it (`Arc::make_mut`).
+        drop(opts);
         let dark = self.lights.apply(&mut scene)?;
         for w in scene.warnings.iter().chain(&map_warning).chain(&dark) {
             eprintln!("warning: {w}");

@@ -56,34 +56,36 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     let scene = a.method.scene.load_scene()?;
     let assets = a.method.scene.load_assets()?;
     let dev = gpu.device()?;
-    let mut r = Renderer::new(&dev, &scene, &assets, cfg.clone())?;
     let base = scene.camera_or_default();
     let path = path.clone().fit(&scene.bounds(), &base, view);
-    let move_to = |r: &mut Renderer, f: u32| {
-        r.set_camera(path.camera(&base, f));
-        let o = path.view_offset(f);
-        r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
+    let run = Frames {
+        dev: &dev,
+        scene: &scene,
+        assets: &assets,
+        path: &path,
+        base_offset,
+        warmup: a.warmup,
+        frames: a.frames,
     };
-    for f in 0..a.warmup {
-        move_to(&mut r, f);
-        r.render_frame()?;
-    }
-    let mut ms: Vec<f64> = Vec::new();
-    let mut loop_iterations = 0;
-    let mut per_pass = std::collections::BTreeMap::<String, Vec<f64>>::new();
-    let cpu0 = process_cpu_seconds();
-    for f in a.warmup..a.warmup + a.frames {
-        move_to(&mut r, f);
-        let s = r.render_frame()?;
-        ms.push(s.ms("trace"));
-        loop_iterations = loop_iterations.max(s.trace_loop_iterations);
-        for p in s.passes {
-            per_pass.entry(p.name).or_default().push(p.ms);
-        }
-    }
-    let cpu = process_cpu_seconds()
-        .zip(cpu0)
-        .map(|(t1, t0)| (t1 - t0) / f64::from(a.frames));
+    let timed = run.time(cfg.clone())?;
+    // `white` in the same run, for the frame-time ratio (a method's sampler and passes are
+    // part of its cost).
+    let white = match cfg.method {
+        Method::White => None,
+        _ => Some(run.time(RenderConfig {
+            method: Method::White,
+            block: None,
+            sampler: None,
+            ..cfg.clone()
+        })?),
+    };
+    let Timed {
+        mut ms,
+        per_pass,
+        loop_iterations,
+        cpu,
+        ..
+    } = timed.clone();
     ms.sort_by(f64::total_cmp);
     let mut out = String::new();
     let median = ms[ms.len() / 2];
@@ -157,6 +159,21 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
             "process CPU time per timed frame {cpu:.3} s: {:.3} Msamples per CPU second",
             samples / cpu / 1e6
         )?;
+    }
+    let frame = timed.frame_median();
+    write!(out, "frame median {frame:.3} ms (every pass)")?;
+    match &white {
+        Some(w) => {
+            let r = frame / w.frame_median();
+            writeln!(
+                out,
+                "; white's {:.3} ms in the same run: {r:.3}x \
+                 (at equal frame time a P1 ratio q counts as q * {:.3})",
+                w.frame_median(),
+                r.sqrt()
+            )?;
+        }
+        None => writeln!(out)?,
     }
     if cfg.bounces == 0 {
         writeln!(out, "primary rays: {:.3} Mrays/s", samples / median / 1e3)?;
@@ -235,4 +252,73 @@ fn process_cpu_seconds() -> Option<f64> {
     let f: Vec<&str> = rest.split_whitespace().collect();
     let ticks = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
     Some(ticks / 100.0)
+}
+
+/// What [`Frames::time`] measured: per timed frame, the trace's and the whole frame's time;
+/// per pass, its times in the frames it ran.
+#[derive(Clone, Debug)]
+struct Timed {
+    ms: Vec<f64>,
+    frame_ms: Vec<f64>,
+    per_pass: std::collections::BTreeMap<String, Vec<f64>>,
+    loop_iterations: u32,
+    cpu: Option<f64>,
+}
+
+impl Timed {
+    /// The median whole frame (the sum of its passes).
+    fn frame_median(&self) -> f64 {
+        let mut v = self.frame_ms.clone();
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    }
+}
+
+/// The frames `bench` times: warm-up frames, then timed ones, along the camera path.
+struct Frames<'a> {
+    dev: &'a blueshift_device::Device,
+    scene: &'a blueshift_scene::Scene,
+    assets: &'a blueshift_render::MethodAssets,
+    path: &'a CameraPath,
+    base_offset: (f32, f32),
+    warmup: u32,
+    frames: u32,
+}
+
+impl Frames<'_> {
+    fn time(&self, cfg: RenderConfig) -> Result<Timed> {
+        let mut r = Renderer::new(self.dev, self.scene, self.assets, cfg)?;
+        let base = self.scene.camera_or_default();
+        let move_to = |r: &mut Renderer, f: u32| {
+            r.set_camera(self.path.camera(&base, f));
+            let o = self.path.view_offset(f);
+            r.set_view_offset((self.base_offset.0 + o.0, self.base_offset.1 + o.1));
+        };
+        for f in 0..self.warmup {
+            move_to(&mut r, f);
+            r.render_frame()?;
+        }
+        let mut t = Timed {
+            ms: Vec::new(),
+            frame_ms: Vec::new(),
+            per_pass: Default::default(),
+            loop_iterations: 0,
+            cpu: None,
+        };
+        let cpu0 = process_cpu_seconds();
+        for f in self.warmup..self.warmup + self.frames {
+            move_to(&mut r, f);
+            let s = r.render_frame()?;
+            t.ms.push(s.ms("trace"));
+            t.frame_ms.push(s.passes.iter().map(|p| p.ms).sum());
+            t.loop_iterations = t.loop_iterations.max(s.trace_loop_iterations);
+            for p in s.passes {
+                t.per_pass.entry(p.name).or_default().push(p.ms);
+            }
+        }
+        t.cpu = process_cpu_seconds()
+            .zip(cpu0)
+            .map(|(t1, t0)| (t1 - t0) / f64::from(self.frames));
+        Ok(t)
+    }
 }

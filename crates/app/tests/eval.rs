@@ -81,6 +81,31 @@ fn tiny_eval_report_matches_recomputation_from_saved_frames() {
         );
         assert!(want_rmse > 0.0);
     }
+    // Equal time: each run's frame is the sum of its pass medians, and its equal-time P1
+    // ratio is its P1 ratio times the square root of its frame time over white's.
+    let frame = |run: &serde_json::Value| -> f64 {
+        let passes = run["pass_ms_median"].as_object().unwrap();
+        assert!(passes.contains_key("trace"), "{passes:?}");
+        passes.values().map(|v| v.as_f64().unwrap()).sum()
+    };
+    let white_ms = frame(&runs[0]);
+    assert!(white_ms > 0.0);
+    for run in runs {
+        let t = frame(run) / white_ms;
+        let got = run["frame_time_ratio_vs_white"].as_f64().unwrap();
+        assert!((got - t).abs() <= 1e-9 * t, "time ratio {got} vs {t}");
+        let p1 = run["ratios_vs_white"]["p1_clean"].as_f64().unwrap();
+        let eq = run["equal_time_p1_clean_ratio"].as_f64().unwrap();
+        assert!(
+            (eq - p1 * t.sqrt()).abs() <= 1e-9,
+            "equal time {eq} vs {p1} x sqrt({t})"
+        );
+    }
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.contains("## Per frame / accumulated at equal frame time"),
+        "{md}"
+    );
     let white_ratio = runs[0]["ratios_vs_white"]["p1"].as_f64().unwrap();
     assert!(
         (white_ratio - 1.0).abs() < 1e-12,

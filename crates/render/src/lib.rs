@@ -71,7 +71,7 @@ use slots::FrameSlot;
 
 /// Timing labels of every pass a permutation or anchored-mask method adds to the path tracer,
 /// in frame order: their sum against `trace` is the method's overhead.
-pub const PERMUTE_PASSES: [&str; 7] = [
+pub const PERMUTE_PASSES: [&str; 8] = [
     "gbuffer",
     "reproject_motion",
     "reproject_seeds",
@@ -79,6 +79,7 @@ pub const PERMUTE_PASSES: [&str; 7] = [
     "history_key",
     "classify_pixels",
     "sort_seeds",
+    "pairs_gate",
 ];
 
 /// The renderer: scene on the device, seed buffers, images, passes, frame slots.

@@ -24,11 +24,6 @@ pub const MAX_ENV_SIDE: u32 = 16384;
 /// Most texels a map may have: 16384 x 8192, the largest equirectangular map (twice as wide
 /// as high) within [`MAX_ENV_SIDE`].
 pub const MAX_ENV_TEXELS: u64 = MAX_ENV_SIDE as u64 * (MAX_ENV_SIDE as u64 / 2);
-/// What the image decoder may allocate for a map's pixels: 4 f32 channels (OpenEXR RGBA, the
-/// most any decoder asks for) of the largest map. (The `image` crate's default, 512 MiB,
-/// refused a 16384 x 4096 `.hdr` as "Memory limit exceeded".)
-const MAX_ENV_DECODE_BYTES: u64 = MAX_ENV_TEXELS * 16;
-
 /// How next-event estimation samples an environment map.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum EnvSampling {
@@ -107,30 +102,6 @@ pub enum EnvMapError {
 /// The largest environment map file read: a 16384 x 8192 map of 32-bit float RGBA.
 const MAX_MAP_FILE_BYTES: u64 = MAX_ENV_TEXELS * 16;
 
-/// A map of `width x height` texels is within the limits: 2x1 to [`MAX_ENV_SIDE`] a side,
-/// at most [`MAX_ENV_TEXELS`] in all.
-fn check_size(path: &Path, width: u32, height: u32) -> Result<(), EnvMapError> {
-    let sides = (2..=MAX_ENV_SIDE).contains(&width) && (1..=MAX_ENV_SIDE).contains(&height);
-    if sides && u64::from(width) * u64::from(height) <= MAX_ENV_TEXELS {
-        return Ok(());
-    }
-    Err(EnvMapError::Size {
-        path: path.to_path_buf(),
-        width,
-        height,
-    })
-}
-
-/// The decoder's limits for a map within [`check_size`]: its sides, and memory for the
-/// pixels of the largest map ([`MAX_ENV_DECODE_BYTES`]).
-fn decode_limits() -> image::Limits {
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_ENV_SIDE);
-    limits.max_image_height = Some(MAX_ENV_SIDE);
-    limits.max_alloc = Some(MAX_ENV_DECODE_BYTES);
-    limits
-}
-
 impl EnvMap {
     /// Reads an equirectangular `.hdr` or `.exr` file (a regular file: a FIFO or device is
     /// refused before it is opened). Texels that are NaN, infinite or
@@ -168,50 +139,15 @@ impl EnvMap {
                 path: path.to_path_buf(),
             });
         }
-        let decode = |message: String| EnvMapError::Decode {
-            path: path.to_path_buf(),
-            message,
-        };
-        let reader = |limits: image::Limits| {
-            let mut r = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
-            r.limits(limits);
-            r
-        };
-        // The size from the header, checked against the map limits before anything is
-        // decoded (and named as they are, not as a decoder's "limit exceeded").
-        // The decoders are third-party code fed untrusted bytes: a panic is a decode error.
-        let (width, height) =
-            std::panic::catch_unwind(|| reader(image::Limits::no_limits()).into_dimensions())
-                .map_err(|_| decode("the decoder failed on malformed data".into()))?
-                .map_err(|e| decode(e.to_string()))?;
-        check_size(path, width, height)?;
-        let decoded = std::panic::catch_unwind(|| reader(decode_limits()).decode())
-            .map_err(|_| decode("the decoder failed on malformed data".into()))?
-            .map_err(|e| match e {
-                image::ImageError::Limits(l) => decode(format!(
-                    "{l} (the limit is {} MiB, what a {MAX_ENV_SIDE}x{} RGBA float map needs)",
-                    MAX_ENV_DECODE_BYTES >> 20,
-                    MAX_ENV_SIDE / 2
-                )),
-                e => decode(e.to_string()),
-            })?;
-        // The header's size again, as decoded.
-        check_size(path, decoded.width(), decoded.height())?;
-        let (width, height) = (decoded.width(), decoded.height());
-        let rgb = decoded.into_rgb32f();
+        let (width, height, mut texels) = decode::texels(path, bytes, format)?;
+        // (RGBE cannot hold these; EXR can.)
         let mut bad = 0usize;
-        let texels = rgb
-            .pixels()
-            .map(|p| {
-                let c = Vec3::from_array(p.0);
-                if c.is_finite() && c.min_element() >= 0.0 {
-                    c
-                } else {
-                    bad += 1;
-                    Vec3::ZERO
-                }
-            })
-            .collect();
+        for c in &mut texels {
+            if !(c.is_finite() && c.min_element() >= 0.0) {
+                bad += 1;
+                *c = Vec3::ZERO;
+            }
+        }
         let warning = (bad > 0).then(|| {
             format!(
                 "{}: {bad} environment map texels are NaN, infinite or negative; they are \
@@ -306,42 +242,66 @@ pub struct EnvTables {
 /// Inclusive running sums of `w` over their total as f32, the last exactly 1; a zero total
 /// gives the uniform CDF (such a row is never chosen: its marginal weight is 0).
 fn cdf(w: &[f64]) -> Vec<f32> {
+    cdf_iter(w).collect()
+}
+
+/// [`cdf`] one entry at a time (the GPU upload writes rows without collecting them).
+pub(crate) fn cdf_iter(w: &[f64]) -> impl Iterator<Item = f32> + '_ {
     let total: f64 = w.iter().sum();
     let n = w.len();
     let mut run = 0f64;
-    w.iter()
-        .enumerate()
-        .map(|(k, &x)| {
-            run += x;
-            if k + 1 == n {
-                1.0
-            } else if total > 0.0 {
-                (run / total) as f32
-            } else {
-                (k + 1) as f32 / n as f32
-            }
-        })
-        .collect()
+    w.iter().enumerate().map(move |(k, &x)| {
+        run += x;
+        if k + 1 == n {
+            1.0
+        } else if total > 0.0 {
+            (run / total) as f32
+        } else {
+            (k + 1) as f32 / n as f32
+        }
+    })
+}
+
+impl EnvMap {
+    /// The sampling weights of row `j` into `out`: luminance (1 if `uniform`) times
+    /// `sin theta` at the row centre. Their sum is the row's marginal weight.
+    pub(crate) fn row_weights(&self, j: usize, uniform: bool, out: &mut Vec<f64>) {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let s = (std::f64::consts::PI * (j as f64 + 0.5) / h as f64).sin();
+        out.clear();
+        out.extend(
+            self.texels[j * w..(j + 1) * w]
+                .iter()
+                .map(|&c| if uniform { 1.0 } else { luminance(c) as f64 } * s),
+        );
+    }
+
+    /// The marginal CDF over rows (`EnvTables::marginal` without the conditional table).
+    pub(crate) fn marginal(&self, uniform: bool) -> Vec<f32> {
+        let mut weights = Vec::with_capacity(self.width as usize);
+        let rows: Vec<f64> = (0..self.height as usize)
+            .map(|j| {
+                self.row_weights(j, uniform, &mut weights);
+                weights.iter().sum()
+            })
+            .collect();
+        cdf(&rows)
+    }
 }
 
 impl EnvTables {
     fn new(map: &EnvMap, uniform: bool) -> EnvTables {
         let (w, h) = (map.width as usize, map.height as usize);
-        let mut row_weights = Vec::with_capacity(h);
+        let mut weights = Vec::with_capacity(w);
         let mut conditional = Vec::with_capacity(w * h);
         for j in 0..h {
-            let s = (std::f64::consts::PI * (j as f64 + 0.5) / h as f64).sin();
-            let weights: Vec<f64> = map.texels[j * w..(j + 1) * w]
-                .iter()
-                .map(|&c| if uniform { 1.0 } else { luminance(c) as f64 } * s)
-                .collect();
-            row_weights.push(weights.iter().sum());
-            conditional.extend(cdf(&weights));
+            map.row_weights(j, uniform, &mut weights);
+            conditional.extend(cdf_iter(&weights));
         }
         EnvTables {
             width: map.width,
             height: map.height,
-            marginal: cdf(&row_weights),
+            marginal: map.marginal(uniform),
             conditional,
         }
     }
@@ -428,6 +388,10 @@ pub fn env_texel_of(d: Vec3, rotation: Vec2, width: u32, height: u32) -> (u32, u
     (i, j)
 }
 
+#[path = "environment_decode.rs"]
+mod decode;
+#[path = "environment_hdr.rs"]
+mod hdr;
 #[cfg(test)]
 #[path = "environment_tests.rs"]
 mod tests;

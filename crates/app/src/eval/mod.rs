@@ -9,6 +9,7 @@ mod ratios;
 mod reference;
 mod report;
 mod report_taa;
+mod timing;
 mod track;
 
 use crate::GpuOpts;

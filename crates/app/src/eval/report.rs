@@ -3,7 +3,7 @@ use super::metrics::Split;
 use super::ratios::{
     method_of, ratio, ratios, stderr_in, stderr_of, taa_ratios, white_of, with_se,
 };
-use super::{Config, EvalArgs, Run, figures, front, masks, report_taa};
+use super::{Config, EvalArgs, Run, figures, front, masks, report_taa, timing};
 use crate::output::write_atomic;
 use anyhow::Result;
 use blueshift_device::Device;
@@ -34,6 +34,12 @@ pub fn write(
     for r in runs {
         let white = white_of(runs, &r.config);
         let sobol = method_of(runs, &r.config, Method::Sobol);
+        let time_ratio = white.map_or(f64::NAN, |w| timing::time_ratio(r, w));
+        let equal_time = |q: fn(&Run) -> f64| {
+            white.map_or(f64::NAN, |w| {
+                timing::equal_time(ratio(q(r), q(w)), time_ratio)
+            })
+        };
         let vs_white = white.map(|w| {
             ratios(
                 &r.metrics.raw,
@@ -75,6 +81,10 @@ pub fn write(
                 num(sobol.map_or(f64::NAN, |s| ratio(r.flip_clean, s.flip_clean))),
             "clean_fraction": r.clean_fraction,
             "pass_ms_median": r.pass_ms,
+            "frame_ms": timing::frame_ms(r),
+            "frame_time_ratio_vs_white": num(time_ratio),
+            "equal_time_p1_clean_ratio": num(equal_time(|r| r.metrics.raw.p1.clean)),
+            "equal_time_taa_p1_clean_ratio": num(equal_time(|r| r.metrics.taa.p1.clean)),
             "p1_per_frame": r.metrics.p1_per_frame,
             "p1_clean_per_frame": r.metrics.p1_clean_per_frame,
             "seconds": r.seconds,
@@ -178,6 +188,7 @@ fn markdown(
         masks::EMITTER_DILATION
     )?;
     report_taa::headline(&mut md, configs, runs)?;
+    timing::table(&mut md, configs, runs)?;
     let points = front::front_points(configs, runs);
     if points.len() > 1 {
         writeln!(

@@ -62,18 +62,21 @@ const EMPTY_BINS: Bins = [[Bin {
     count: 0,
 }; BINS]; 3];
 
-pub(super) fn build(bounds: &[Aabb]) -> Bvh {
-    let n = bounds.len();
+/// Builds over `n` primitives whose bounds `bounds(i)` gives: the primitive references are
+/// made from it directly, with no array of boxes (or of triangles) in between.
+pub(super) fn build(n: usize, bounds: impl Fn(usize) -> Aabb + Sync) -> Bvh {
     if n == 0 {
         return Bvh::default();
     }
-    let mut refs: Vec<PrimRef> = bounds
-        .par_iter()
-        .enumerate()
-        .map(|(i, b)| PrimRef {
-            min: b.min,
-            index: i as u32,
-            max: b.max,
+    let mut refs: Vec<PrimRef> = (0..n)
+        .into_par_iter()
+        .map(|i| {
+            let b = bounds(i);
+            PrimRef {
+                min: b.min,
+                index: i as u32,
+                max: b.max,
+            }
         })
         .collect();
     let (root_bounds, root_centroids) = node_bounds(&refs);

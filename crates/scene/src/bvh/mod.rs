@@ -39,13 +39,18 @@ pub struct Bvh {
 impl Bvh {
     /// Builds over triangles given by their three vertices.
     pub fn build(triangles: &[[Vec3; 3]]) -> Bvh {
-        let bounds: Vec<Aabb> = triangles.iter().map(|t| Aabb::from_points(t)).collect();
-        Self::build_from_bounds(&bounds)
+        Self::build_with(triangles.len(), |i| Aabb::from_points(&triangles[i]))
     }
 
     /// Builds over arbitrary primitives given by their bounds.
     pub fn build_from_bounds(bounds: &[Aabb]) -> Bvh {
-        build::build(bounds)
+        Self::build_with(bounds.len(), |i| bounds[i])
+    }
+
+    /// Builds over `n` primitives, primitive `i` bounded by `bounds(i)`: no copy of the
+    /// primitives or of their boxes is made (the scene's triangles are read where they are).
+    pub fn build_with(n: usize, bounds: impl Fn(usize) -> Aabb + Sync) -> Bvh {
+        build::build(n, bounds)
     }
 
     /// Checks the invariants the traversal relies on, against the primitive bounds in *input*

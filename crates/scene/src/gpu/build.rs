@@ -4,7 +4,7 @@ use super::lights::{EnvGpu, non_triangle_lights};
 use super::*;
 use crate::geometry::{luminance, srgb_to_linear};
 use crate::scene::{Scene, Wrap, check_sizes};
-use crate::{Bvh, Result, intersect};
+use crate::{Aabb, Bvh, Result, intersect};
 use rayon::prelude::*;
 
 /// Everything the GPU needs, ready to upload. Triangle-indexed arrays are in BVH order.
@@ -44,9 +44,9 @@ pub struct GpuBuffer<'a> {
 impl SceneGpu {
     /// Builds the BVH (in parallel) and flattens the scene.
     pub fn build(scene: &Scene) -> SceneGpu {
-        let positions: Vec<[Vec3; 3]> = scene.triangles.iter().map(|t| t.positions).collect();
-        let bvh = Bvh::build(&positions);
-        drop(positions);
+        let bvh = Bvh::build_with(scene.triangles.len(), |i| {
+            Aabb::from_points(&scene.triangles[i].positions)
+        });
 
         let triangles: Vec<GpuTriangle> = bvh
             .order

@@ -24,11 +24,13 @@
 mod build;
 mod lights;
 mod quads;
+mod texel_source;
 mod texels;
 
 pub use build::{GpuBuffer, SceneGpu};
 pub use lights::EnvGpu;
 pub use quads::{LIGHT_QUAD_SHIFT, LIGHT_TRIANGLE_MASK, QuadFrame};
+pub use texel_source::TexelSource;
 pub use texels::*;
 
 use blueshift_layout::{Header, gpu_struct};

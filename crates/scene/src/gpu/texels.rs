@@ -125,10 +125,6 @@ impl SceneTexels {
     }
 }
 
-fn f(x: f32) -> u32 {
-    x.to_bits()
-}
-
 fn array(name: &'static str, mut texels: Vec<Texel>) -> TexelArray {
     if texels.is_empty() {
         texels.push([0; 4]);
@@ -137,138 +133,28 @@ fn array(name: &'static str, mut texels: Vec<Texel>) -> TexelArray {
 }
 
 impl SceneGpu {
-    /// The scene in the texel layout of the module documentation.
+    /// The scene in the texel layout of the module documentation, whole (tests and tools; an
+    /// upload writes each [`TexelSource`] a chunk at a time instead).
     pub fn texels(&self) -> SceneTexels {
-        let empty = [BvhNode::EMPTY];
-        let nodes = if self.nodes.is_empty() {
-            &empty[..]
-        } else {
-            &self.nodes[..]
-        };
-        // One node of padding first (see the module documentation).
-        let nodes: Vec<Texel> = [[0; 4]; NODE_TEXELS as usize]
-            .into_iter()
-            .chain(nodes.iter().flat_map(node_texels))
-            .collect();
-        let triangles = self
-            .triangles
-            .iter()
-            .zip(&self.shading)
-            .flat_map(|(t, s)| {
-                [
-                    [f(t.v0.x), f(t.v0.y), f(t.v0.z), f(t.e1.x)],
-                    [f(t.e1.y), f(t.e1.z), f(t.e2.x), f(t.e2.y)],
-                    [f(t.e2.z), s.material, s.light as u32, 0],
-                    [0; 4],
-                ]
-            })
-            .collect();
-        let shading = self
-            .shading
-            .iter()
-            .flat_map(|s| {
-                [
-                    [f(s.n0.x), f(s.n0.y), f(s.n0.z), f(s.uv0.x)],
-                    [f(s.n1.x), f(s.n1.y), f(s.n1.z), f(s.uv0.y)],
-                    [f(s.n2.x), f(s.n2.y), f(s.n2.z), f(s.uv1.x)],
-                    [f(s.uv1.y), f(s.uv2.x), f(s.uv2.y), 0],
-                ]
-            })
-            .collect();
-        let materials = self
-            .materials
-            .iter()
-            .flat_map(|m| {
-                let c = m.base_color;
-                [
-                    [f(c[0]), f(c[1]), f(c[2]), f(m.metallic)],
-                    [
-                        f(m.emissive.x),
-                        f(m.emissive.y),
-                        f(m.emissive.z),
-                        f(m.roughness),
-                    ],
-                    [
-                        m.flags,
-                        m.base_color_tex as u32,
-                        m.emissive_tex as u32,
-                        m.mr_tex as u32,
-                    ],
-                    [
-                        f(m.specular_color.x),
-                        f(m.specular_color.y),
-                        f(m.specular_color.z),
-                        f(m.specular),
-                    ],
-                ]
-            })
-            .collect();
-        let mut lights: Vec<Texel> = self
-            .lights
-            .iter()
-            .map(|l| [l.triangle, f(l.area), f(l.pdf), f(l.cdf)])
-            .collect();
-        debug_assert_eq!(lights.len() as u32, self.info.light_params_offset);
-        let zero = [LightParams::default()];
-        let params = if self.light_params.is_empty() {
-            &zero[..]
-        } else {
-            &self.light_params[..]
-        };
-        lights.extend(params.iter().flat_map(|p| {
-            let v = |a: Vec3, w: u32| [f(a.x), f(a.y), f(a.z), w];
-            [
-                v(p.position, p.kind),
-                v(p.direction, f(p.cos_inner)),
-                v(p.intensity, f(p.cos_outer)),
-            ]
-        }));
-        if let Some(env) = &self.environment {
-            debug_assert_eq!(lights.len() as u32, self.info.env_offset);
-            lights.extend(env.marginal.iter().map(|&m| [f(m), 0, 0, 0]));
-            lights.extend(env.texels.iter().map(|t| t.map(f)));
-        }
-        let textures = self
-            .textures
-            .iter()
-            .map(|t| [t.offset, t.width, t.height, t.flags])
-            .collect();
-        let texels = self
-            .texels
-            .chunks(ATLAS_WORDS_PER_TEXEL as usize)
-            .map(|c| {
-                let mut t = [0; 4];
-                t[..c.len()].copy_from_slice(c);
-                t
-            })
-            .collect();
+        let [
+            nodes,
+            triangles,
+            shading,
+            materials,
+            textures,
+            texels,
+            lights,
+        ] = self.texel_sources().map(|s| array(s.name, s.to_vec()));
         SceneTexels {
-            nodes: array("scene.bvh_nodes", nodes),
-            triangles: array("scene.bvh_triangles", triangles),
-            shading: array("scene.triangle_shading", shading),
-            materials: array("scene.materials", materials),
-            textures: array("scene.textures", textures),
-            texels: array("scene.texels", texels),
-            lights: array("scene.lights", lights),
+            nodes,
+            triangles,
+            shading,
+            materials,
+            textures,
+            texels,
+            lights,
         }
     }
-}
-
-fn node_texels(n: &BvhNode) -> [Texel; 2] {
-    [
-        [
-            f(n.aabb_min.x),
-            f(n.aabb_min.y),
-            f(n.aabb_min.z),
-            n.left_first,
-        ],
-        [
-            f(n.aabb_max.x),
-            f(n.aabb_max.y),
-            f(n.aabb_max.z),
-            n.count | n.skip << NODE_COUNT_BITS,
-        ],
-    ]
 }
 
 // The texel counts above are what the closures emit.

@@ -16,8 +16,9 @@ const IMAGE_TEXELS: u64 = crate::gpu::SCENE_TEXELS_WIDTH as u64 * IMAGE_ROWS;
 ///
 /// The defaults are what one device with `maxImageDimension2D` 16384 can hold in the scene
 /// images (`crate::gpu::texels`): four texels per triangle and per BVH pair, at most four per
-/// light, and four texture texels per atlas texel. Loading a scene at these limits takes
-/// about 100 bytes per triangle and 4 per texture texel, plus the file.
+/// light, and four texture texels per atlas texel. The loaded scene holds about 100 bytes per
+/// triangle and 4 per texture texel; loading, building its GPU form and writing its texels
+/// for the upload peak at about 245 bytes per triangle, plus the file (docs/architecture.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LoadBudget {
     /// Triangles after instancing: each mesh's triangles times the nodes that draw it.

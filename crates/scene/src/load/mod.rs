@@ -280,6 +280,8 @@ fn load_inner(
         });
     }
     dedup::drop_duplicates(&mut triangles, &mut ctx.warnings);
+    // The scene is kept while it renders: not the up to 2x of a grown Vec.
+    triangles.shrink_to_fit();
     if triangles.is_empty() {
         return Err(SceneError::EmptyScene {
             path: path.to_path_buf(),
