@@ -139,7 +139,7 @@ pub(super) fn pair_emitters(emitters: &[Emitter]) -> Vec<Emissive> {
     };
     let mut by_edge: HashMap<_, Vec<usize>> = HashMap::new();
     for (n, e) in emitters.iter().enumerate() {
-        if true || e.textured || e.index > LIGHT_TRIANGLE_MASK {
+        if e.textured || e.index > LIGHT_TRIANGLE_MASK {
             continue;
         }
         for k in 0..3 {
