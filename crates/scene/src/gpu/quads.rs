@@ -208,7 +208,6 @@ mod tests {
             v0: a[0],
             e1: a[1] - a[0],
             e2: a[2] - a[0],
-            ..Default::default()
         }
     }
 
