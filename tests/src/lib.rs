@@ -49,6 +49,8 @@ mod mask_shift;
 #[cfg(test)]
 mod motion;
 #[cfg(test)]
+mod pairs_gate;
+#[cfg(test)]
 mod permute;
 #[cfg(test)]
 mod recipes;
@@ -58,6 +60,8 @@ mod rng;
 mod sampling;
 #[cfg(test)]
 mod shade;
+#[cfg(test)]
+mod sort_variants;
 #[cfg(test)]
 mod taa;
 #[cfg(test)]

@@ -8,11 +8,9 @@ mod common;
 use blueshift_scene::{LoadOptions, Scene};
 use common::{embedded_uri, one_quad, write_json};
 use serde_json::json;
-use std::alloc::{GlobalAlloc, Layout, System};
+#[path = "common/counting.rs"]
+mod counting;
 use std::cell::Cell;
-
-/// Counts the bytes allocated by this thread: now, and the most at any time.
-struct Counting;
 
 thread_local! {
     static NOW: Cell<isize> = const { Cell::new(0) };
@@ -28,39 +26,9 @@ fn add(bytes: isize) {
     });
 }
 
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            add(layout.size() as isize);
-        }
-        p
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if !p.is_null() {
-            add(layout.size() as isize);
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, p: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(p, layout) };
-        add(-(layout.size() as isize));
-    }
-
-    unsafe fn realloc(&self, p: *mut u8, layout: Layout, size: usize) -> *mut u8 {
-        let q = unsafe { System.realloc(p, layout, size) };
-        if !q.is_null() {
-            add(size as isize - layout.size() as isize);
-        }
-        q
-    }
-}
-
+/// Counts the bytes allocated: now, and the most at any time.
 #[global_allocator]
-static COUNTING: Counting = Counting;
+static COUNTING: counting::Counting = counting::Counting(add);
 
 /// `f()` and the most bytes this thread held at once while it ran, above what it held before.
 fn peak_during<R>(f: impl FnOnce() -> R) -> (R, usize) {

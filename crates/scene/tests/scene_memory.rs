@@ -6,13 +6,11 @@ use blueshift_scene::gpu::Texel;
 use blueshift_scene::presets::{GltfBuilder, MeshData};
 use blueshift_scene::{EnvMap, LoadOptions, Scene, SceneGpu};
 use serde_json::json;
-use std::alloc::{GlobalAlloc, Layout, System};
+#[path = "common/counting.rs"]
+mod counting;
 use std::sync::Arc;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicIsize, Ordering};
-
-/// Counts the bytes allocated by the process: now, and the most at any time.
-struct Counting;
 
 static NOW: AtomicIsize = AtomicIsize::new(0);
 static PEAK: AtomicIsize = AtomicIsize::new(0);
@@ -24,40 +22,9 @@ fn add(bytes: isize) {
     PEAK.fetch_max(n, Ordering::Relaxed);
 }
 
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            add(layout.size() as isize);
-        }
-        p
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if !p.is_null() {
-            add(layout.size() as isize);
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, p: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(p, layout) };
-        add(-(layout.size() as isize));
-    }
-
-    unsafe fn realloc(&self, p: *mut u8, layout: Layout, size: usize) -> *mut u8 {
-        let q = unsafe { System.realloc(p, layout, size) };
-        if !q.is_null() {
-            // The difference only: large blocks grow and shrink in place (mremap).
-            add(size as isize - layout.size() as isize);
-        }
-        q
-    }
-}
-
+/// Counts the bytes allocated: now, and the most at any time.
 #[global_allocator]
-static COUNTING: Counting = Counting;
+static COUNTING: counting::Counting = counting::Counting(add);
 
 /// `f()` and the most bytes held at once while it ran, above what was held before.
 fn peak_during<R>(f: impl FnOnce() -> R) -> (R, usize) {

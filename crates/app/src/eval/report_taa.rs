@@ -11,12 +11,6 @@ use std::fmt::Write as _;
 /// One row per method, one column per configuration: per-frame P1 / TAA P1, emitter-free,
 /// ratios to white.
 pub fn headline(md: &mut String, configs: &[Config], runs: &[Run]) -> Result<()> {
-    let mut methods: Vec<String> = Vec::new();
-    for r in runs {
-        if !methods.contains(&r.method.name()) {
-            methods.push(r.method.name());
-        }
-    }
     writeln!(
         md,
         "## Per frame / accumulated along the motion\n\n\
@@ -24,28 +18,13 @@ pub fn headline(md: &mut String, configs: &[Config], runs: &[Run]) -> Result<()>
          motion; the EMA for a still camera). Below each configuration: the mean motion of the \
          pixel-centre hit points and the share of pixels that kept their TAA history.\n"
     )?;
-    let head: Vec<String> = configs.iter().map(Config::label).collect();
-    writeln!(md, "| method | {} |", head.join(" | "))?;
-    writeln!(md, "|---|{}", "---|".repeat(configs.len()))?;
-    for name in &methods {
-        let cells: Vec<String> = configs
-            .iter()
-            .map(|c| {
-                let run = runs
-                    .iter()
-                    .find(|r| &r.config == c && &r.method.name() == name);
-                match (run, white_of(runs, c)) {
-                    (Some(r), Some(w)) => format!(
-                        "{:.3} / {:.3}",
-                        ratio(r.metrics.raw.p1.clean, w.metrics.raw.p1.clean),
-                        ratio(r.metrics.taa.p1.clean, w.metrics.taa.p1.clean)
-                    ),
-                    _ => "-".into(),
-                }
-            })
-            .collect();
-        writeln!(md, "| {name} | {} |", cells.join(" | "))?;
-    }
+    method_rows(md, configs, runs, |r, w| {
+        format!(
+            "{:.3} / {:.3}",
+            ratio(r.metrics.raw.p1.clean, w.metrics.raw.p1.clean),
+            ratio(r.metrics.taa.p1.clean, w.metrics.taa.p1.clean)
+        )
+    })?;
     let motion: Vec<String> = configs
         .iter()
         .map(|c| {
@@ -59,6 +38,41 @@ pub fn headline(md: &mut String, configs: &[Config], runs: &[Run]) -> Result<()>
         })
         .collect();
     writeln!(md, "| *motion* | {} |\n", motion.join(" | "))?;
+    Ok(())
+}
+
+/// A table of one row per method (in the order they first ran) and one column per
+/// configuration, each cell `cell(run, white of that configuration)`.
+pub fn method_rows(
+    md: &mut String,
+    configs: &[Config],
+    runs: &[Run],
+    cell: impl Fn(&Run, &Run) -> String,
+) -> Result<()> {
+    let mut methods: Vec<String> = Vec::new();
+    for r in runs {
+        if !methods.contains(&r.method.name()) {
+            methods.push(r.method.name());
+        }
+    }
+    let head: Vec<String> = configs.iter().map(Config::label).collect();
+    writeln!(md, "| method | {} |", head.join(" | "))?;
+    writeln!(md, "|---|{}", "---|".repeat(configs.len()))?;
+    for name in &methods {
+        let cells: Vec<String> = configs
+            .iter()
+            .map(|c| {
+                let run = runs
+                    .iter()
+                    .find(|r| &r.config == c && &r.method.name() == name);
+                match (run, white_of(runs, c)) {
+                    (Some(r), Some(w)) => cell(r, w),
+                    _ => "-".into(),
+                }
+            })
+            .collect();
+        writeln!(md, "| {name} | {} |", cells.join(" | "))?;
+    }
     Ok(())
 }
 

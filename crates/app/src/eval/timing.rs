@@ -5,7 +5,7 @@
 //! Why the square root: at a fixed budget a method that takes r times as long per frame
 //! renders 1/r as many samples, and Monte Carlo error falls as one over the square root of
 //! the samples, so a P1 ratio q at r times the cost is worth q * sqrt(r) at equal time.
-use super::ratios::{ratio, white_of};
+use super::ratios::ratio;
 use super::{Config, Run};
 use anyhow::Result;
 use std::fmt::Write as _;
@@ -29,12 +29,6 @@ pub fn equal_time(p1_ratio: f64, time_ratio: f64) -> f64 {
 /// One row per method, one column per configuration: equal-time per-frame P1 / TAA P1
 /// (emitter-free, ratios to white) and the frame-time ratio.
 pub fn table(md: &mut String, configs: &[Config], runs: &[Run]) -> Result<()> {
-    let mut methods: Vec<String> = Vec::new();
-    for r in runs {
-        if !methods.contains(&r.method.name()) {
-            methods.push(r.method.name());
-        }
-    }
     writeln!(
         md,
         "## Per frame / accumulated at equal frame time\n\n\
@@ -42,31 +36,14 @@ pub fn table(md: &mut String, configs: &[Config], runs: &[Run]) -> Result<()> {
          (whole frames: the trace and every pass, medians over this run's frames, GPU \
          timestamps): per frame / TAA, and (the frame-time ratio).\n"
     )?;
-    let head: Vec<String> = configs.iter().map(Config::label).collect();
-    writeln!(md, "| method | {} |", head.join(" | "))?;
-    writeln!(md, "|---|{}", "---|".repeat(configs.len()))?;
-    for name in &methods {
-        let cells: Vec<String> = configs
-            .iter()
-            .map(|c| {
-                let run = runs
-                    .iter()
-                    .find(|r| &r.config == c && &r.method.name() == name);
-                match (run, white_of(runs, c)) {
-                    (Some(r), Some(w)) => {
-                        let t = time_ratio(r, w);
-                        format!(
-                            "{:.3} / {:.3} ({t:.2}x)",
-                            equal_time(ratio(r.metrics.raw.p1.clean, w.metrics.raw.p1.clean), t),
-                            equal_time(ratio(r.metrics.taa.p1.clean, w.metrics.taa.p1.clean), t)
-                        )
-                    }
-                    _ => "-".into(),
-                }
-            })
-            .collect();
-        writeln!(md, "| {name} | {} |", cells.join(" | "))?;
-    }
+    super::report_taa::method_rows(md, configs, runs, |r, w| {
+        let t = time_ratio(r, w);
+        format!(
+            "{:.3} / {:.3} ({t:.2}x)",
+            equal_time(ratio(r.metrics.raw.p1.clean, w.metrics.raw.p1.clean), t),
+            equal_time(ratio(r.metrics.taa.p1.clean, w.metrics.taa.p1.clean), t)
+        )
+    })?;
     writeln!(md)?;
     Ok(())
 }
