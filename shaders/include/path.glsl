@@ -160,14 +160,30 @@ uint choose_light(float x, out GpuLight l, out float rescaled) {
 }
 
 // A point q on triangle light l from (ux, uy) as seen from p: direction wi, distance d,
-// |cosine| at the light and the radiance it emits towards p.
+// |cosine| at the light and the radiance it emits towards p. A parallelogram light (two
+// triangles, crates/scene/src/gpu/quads.rs, whose QuadFrame::frame is the twin of the frame
+// here) maps (ux, uy) affinely onto the whole quad, q = o + ux s + uy t; a triangle radially
+// from its first vertex.
 void triangle_light_point(GpuLight l, float ux, float uy, vec3 p, out vec3 q, out vec3 wi,
                           out float d, out float cos_l, out vec3 le) {
-    SceneTriangle tri = scene_triangle(l.triangle);
-    SceneShading sh = scene_shading_at(l.triangle, TRACE_TEXTURES != 0);
+    uint index = l.triangle & LIGHT_TRIANGLE_MASK;
+    uint code = (l.triangle >> LIGHT_QUAD_SHIFT) & 63u;
+    SceneTriangle tri = scene_triangle(index);
+    SceneShading sh = scene_shading_at(index, TRACE_TEXTURES != 0);
     float su = sqrt(ux);
     float b1 = 1.0 - su, b2 = uy * su;
-    q = tri.tri.v0 + b1 * tri.tri.e1 + b2 * tri.tri.e2;
+    vec3 a0 = tri.tri.v0, a1 = tri.tri.v0 + tri.tri.e1, a2 = tri.tri.v0 + tri.tri.e2;
+    uint k = (code >> 1u) & 3u;
+    vec3 c = k == 0u ? a0 : (k == 1u ? a1 : a2);
+    vec3 big_s = (k == 0u ? a1 : (k == 1u ? a2 : a0)) - c;
+    vec3 big_t = (k == 0u ? a2 : (k == 1u ? a0 : a1)) - c;
+    bool qi = (code & 8u) != 0u, qj = (code & 16u) != 0u;
+    vec3 o = c + (qi ? big_s : vec3(0.0)) + (qj ? big_t : vec3(0.0));
+    vec3 qs = qi ? -big_s : big_s, qt = qj ? -big_t : big_t;
+    bool swap = (code & 32u) != 0u;
+    vec3 side_u = swap ? qt : qs, side_v = swap ? qs : qt;
+    q = (code & 1u) != 0u ? o + ux * side_u + uy * side_v
+                          : tri.tri.v0 + b1 * tri.tri.e1 + b2 * tri.tri.e2;
     vec3 to = q - p;
     d = length(to);
     wi = to / d;

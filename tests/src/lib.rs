@@ -37,6 +37,8 @@ mod history;
 #[cfg(test)]
 mod jitter;
 #[cfg(test)]
+mod light_quads;
+#[cfg(test)]
 mod lights;
 #[cfg(test)]
 mod lights_twin;

@@ -42,8 +42,8 @@ pub use environment::{
 pub use error::SceneError;
 pub use geometry::Aabb;
 pub use gpu::{
-    BvhNode, GpuBuffer, GpuLight, GpuMaterial, GpuTexture, GpuTriangle, Hit, Ray, SceneGpu,
-    SceneInfo, TriangleShading,
+    BvhNode, GpuBuffer, GpuLight, GpuMaterial, GpuTexture, GpuTriangle, Hit, LIGHT_QUAD_SHIFT,
+    LIGHT_TRIANGLE_MASK, QuadFrame, Ray, SceneGpu, SceneInfo, TriangleShading,
 };
 pub use intersect::{
     TraversalCounts, closest_hit, closest_hit_brute_force, closest_hit_counted, intersect_triangle,

@@ -4,7 +4,7 @@
 mod common;
 
 use blueshift_scene::presets::GltfBuilder;
-use blueshift_scene::{LoadOptions, Scene, SceneGpu};
+use blueshift_scene::{LIGHT_TRIANGLE_MASK, LoadOptions, QuadFrame, Scene, SceneGpu};
 use common::{embedded_uri, emissive_material, load, one_quad, quad, write, write_json};
 use glam::Vec3;
 use serde_json::{Value, json};
@@ -294,7 +294,8 @@ fn light_cdf_is_power_weighted() {
     }
     let scene = load(&write(dir.path(), "lights.gltf", &b.to_gltf_embedded())).unwrap();
     let gpu = SceneGpu::build(&scene);
-    assert_eq!(gpu.lights.len(), 4);
+    // Each quad is one light: its two triangles form a parallelogram.
+    assert_eq!(gpu.lights.len(), 2);
     let sum: f32 = gpu.lights.iter().map(|l| l.pdf).sum();
     assert!((sum - 1.0).abs() < 1e-6);
     assert_eq!(gpu.lights.last().unwrap().cdf, 1.0);
@@ -302,15 +303,19 @@ fn light_cdf_is_power_weighted() {
         assert!(w[0].cdf <= w[1].cdf);
     }
     for (k, l) in gpu.lights.iter().enumerate() {
-        let mat = gpu.shading[l.triangle as usize].material;
+        assert!(QuadFrame::of_light(l.triangle).is_some(), "light {k}");
+        let first = (l.triangle & LIGHT_TRIANGLE_MASK) as usize;
+        let mat = gpu.shading[first].material;
         let expected = if mat == bright as u32 {
-            3.0 / 8.0
+            3.0 / 4.0
         } else {
-            1.0 / 8.0
+            1.0 / 4.0
         };
         assert!((l.pdf - expected).abs() < 1e-6, "light {k}: {}", l.pdf);
-        assert_eq!(gpu.shading[l.triangle as usize].light, k as i32);
-        assert!((l.area - 2.0).abs() < 1e-6);
+        let members = gpu.shading.iter().filter(|s| s.light == k as i32).count();
+        assert_eq!(members, 2, "light {k}: both triangles point at it");
+        assert_eq!(gpu.shading[first].light, k as i32);
+        assert!((l.area - 4.0).abs() < 1e-6);
     }
     // power = luminance(emission) * area * pi; emission (1, .5, .25) * strength.
     let lum = 0.2126 + 0.7152 * 0.5 + 0.0722 * 0.25;

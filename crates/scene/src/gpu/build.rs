@@ -142,31 +142,37 @@ impl SceneGpu {
             .collect();
 
         let mut shading = Vec::with_capacity(triangles.len());
-        let mut lights = Vec::new();
-        let mut total = 0f64;
-        let mut powers = Vec::new();
+        let mut emitters = Vec::new();
+        let mut emitter_power = Vec::new();
         for (i, &src) in bvh.order.iter().enumerate() {
             let t = &scene.triangles[src as usize];
-            let mut light = -1;
             let emission = material_emission
                 .get(t.material as usize)
                 .copied()
                 .unwrap_or(Vec3::ZERO);
-            let area = 0.5
-                * (t.positions[1] - t.positions[0])
-                    .cross(t.positions[2] - t.positions[0])
-                    .length();
+            let face = (t.positions[1] - t.positions[0]).cross(t.positions[2] - t.positions[0]);
+            let area = 0.5 * face.length();
             let power = luminance(emission) as f64 * area as f64 * std::f64::consts::PI;
             if power > 0.0 && power.is_finite() {
-                light = lights.len() as i32;
-                total += power;
-                powers.push(power);
-                lights.push(GpuLight {
-                    triangle: i as u32,
-                    area,
-                    pdf: 0.0,
-                    cdf: 0.0,
+                // The side `triangle_light_point` calls the front: the face normal turned
+                // towards the first shading normal.
+                let facing = if face.dot(t.normals[0]) < 0.0 {
+                    -face
+                } else {
+                    face
+                };
+                let textured = scene
+                    .materials
+                    .get(t.material as usize)
+                    .is_some_and(|m| m.emissive_texture.is_some());
+                emitters.push(quads::Emitter {
+                    index: i as u32,
+                    positions: t.positions,
+                    material: t.material,
+                    facing,
+                    textured,
                 });
+                emitter_power.push((power, area));
             }
             shading.push(TriangleShading {
                 n0: t.normals[0],
@@ -176,7 +182,31 @@ impl SceneGpu {
                 uv1: t.uvs[1],
                 uv2: t.uvs[2],
                 material: t.material,
-                light,
+                light: -1,
+            });
+        }
+        let mut lights = Vec::new();
+        let mut total = 0f64;
+        let mut powers = Vec::new();
+        for light in quads::pair_emitters(&emitters) {
+            let (first, second, code) = match light {
+                quads::Emissive::Triangle(a) => (a, None, 0),
+                quads::Emissive::Quad(a, b, frame) => (a, Some(b), frame.code()),
+            };
+            let members = std::iter::once(first).chain(second);
+            let (power, area) = members.clone().fold((0.0, 0.0), |(p, a), m| {
+                (p + emitter_power[m].0, a + emitter_power[m].1)
+            });
+            for m in members {
+                shading[emitters[m].index as usize].light = lights.len() as i32;
+            }
+            total += power;
+            powers.push(power);
+            lights.push(GpuLight {
+                triangle: emitters[first].index | code << quads::LIGHT_QUAD_SHIFT,
+                area,
+                pdf: 0.0,
+                cdf: 0.0,
             });
         }
         let bounds = scene.bounds();

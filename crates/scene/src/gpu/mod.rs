@@ -23,11 +23,13 @@
 
 mod build;
 mod lights;
+mod quads;
 mod texel_source;
 mod texels;
 
 pub use build::{GpuBuffer, SceneGpu};
 pub use lights::EnvGpu;
+pub use quads::{LIGHT_QUAD_SHIFT, LIGHT_TRIANGLE_MASK, QuadFrame};
 pub use texel_source::TexelSource;
 pub use texels::*;
 
@@ -157,6 +159,8 @@ gpu_struct! {
     /// of choosing it (power / total power; a triangle's power is luminance(emission) * area *
     /// pi, the others' in `build.rs`) and `cdf` the inclusive running sum (last entry exactly
     /// 1): pick the first light with `xi < cdf`. A triangle's area density is `pdf / area`.
+    /// Two triangles that form a parallelogram are one light (`quads`): `triangle` holds the
+    /// first one's index below [`LIGHT_QUAD_SHIFT`] and the quad's frame above, `area` both.
     pub struct GpuLight {
         pub triangle: u32,
         pub area: f32,
@@ -272,6 +276,8 @@ pub(crate) fn header() -> Header {
         .constant("TEXTURE_WRAP_MIRROR", TEXTURE_WRAP_MIRROR)
         .constant("TEXTURE_FILTER_NEAREST", TEXTURE_FILTER_NEAREST)
         .constant("LIGHT_PARAMS_BIT", LIGHT_PARAMS_BIT)
+        .constant("LIGHT_QUAD_SHIFT", LIGHT_QUAD_SHIFT)
+        .constant("LIGHT_TRIANGLE_MASK", LIGHT_TRIANGLE_MASK)
         .constant("LIGHT_POINT", LIGHT_POINT)
         .constant("LIGHT_SPOT", LIGHT_SPOT)
         .constant("LIGHT_DIRECTIONAL", LIGHT_DIRECTIONAL)
