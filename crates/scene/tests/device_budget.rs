@@ -4,19 +4,13 @@
 //! expanded), and the same file loaded without the device's budget is then refused by those
 //! later checks, so the budget refuses nothing the device could hold.
 
+mod common;
+
 use blueshift_scene::presets::hostile;
-use blueshift_scene::{DeviceLimits, EnvMap, LoadBudget, LoadOptions, Scene, SceneError, SceneGpu};
+use blueshift_scene::{DeviceLimits, EnvMap, LoadBudget, Scene, SceneError, SceneGpu};
+use common::load_budgeted as load;
 use glam::Vec3;
 use std::sync::Arc;
-
-fn load(bytes: &[u8], budget: LoadBudget) -> Result<Scene, SceneError> {
-    let options = LoadOptions {
-        quiet: true,
-        budget,
-        ..Default::default()
-    };
-    Scene::from_slice(bytes, None, &options)
-}
 
 /// Whether every scene image of `scene` fits `rows` rows (what `SceneImages` checks against
 /// `maxImageDimension2D`).

@@ -4,19 +4,12 @@
 
 mod common;
 
+use common::load_budgeted as load;
+
 use blueshift_scene::presets::{self, GltfBuilder, hostile};
-use blueshift_scene::{LoadBudget, LoadOptions, Scene, SceneError};
+use blueshift_scene::{LoadBudget, SceneError};
 use serde_json::json;
 use std::path::Path;
-
-fn load(bytes: &[u8], budget: LoadBudget) -> Result<Scene, SceneError> {
-    let options = LoadOptions {
-        quiet: true,
-        budget,
-        ..Default::default()
-    };
-    Scene::from_slice(bytes, None, &options)
-}
 
 #[test]
 fn a_node_that_lists_itself_is_a_cycle() {

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use blueshift_scene::presets::{GltfBuilder, MeshData};
-use blueshift_scene::{Ray, Scene};
+use blueshift_scene::{LoadBudget, LoadOptions, Ray, Scene, SceneError};
 use glam::Vec3;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -194,4 +194,14 @@ pub fn triangles(p: &Path, options: Option<&blueshift_scene::LoadOptions>) -> us
 pub fn quad_doc() -> Value {
     let b = one_quad();
     b.json(Some(embedded_uri(b.bin())))
+}
+
+/// Loads a scene from memory, quietly, within `budget`.
+pub fn load_budgeted(bytes: &[u8], budget: LoadBudget) -> Result<Scene, SceneError> {
+    let options = LoadOptions {
+        quiet: true,
+        budget,
+        ..Default::default()
+    };
+    Scene::from_slice(bytes, None, &options)
 }
