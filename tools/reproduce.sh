@@ -351,7 +351,7 @@ for r in "${selected[@]}"; do
   } > "$body"
   splice "reproduce:$name" "$work" "$body"
   if [ "$name" = motion ] && ((!quick)); then
-    { echo; headline "$out/report.md"; echo; echo "At equal frame time (the same times the square root of the frame-time ratio to \`white\`, in parentheses):"; echo; equal_time "$out/report.md"; echo; } > "$head_body"
+    { echo; headline "$out/report.md"; echo; } > "$head_body"
     splice "reproduce:$name" README.md "$head_body"
     { echo; headline "$out/report.md" | picks; echo; } > "$head_body"
     splice reproduce:pick README.md "$head_body"
