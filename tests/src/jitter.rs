@@ -180,12 +180,12 @@ fn a_still_jitter_walks_its_sequence_per_pixel() {
             wrap_t: Wrap::Repeat,
             nearest: true,
         }],
-        images: vec![Image {
+        images: std::sync::Arc::new([Image {
             name: None,
             width: 1,
             height: 1,
             rgba8: vec![0, 0, 0, 255],
-        }],
+        }]),
         ..scene(square, vec![textured_black], Vec3::ONE, cam)
     };
     let a = assets();

@@ -433,6 +433,8 @@ pub fn env_texel_of(d: Vec3, rotation: Vec2, width: u32, height: u32) -> (u32, u
 
 #[path = "environment_decode.rs"]
 mod decode;
+#[path = "environment_exr.rs"]
+mod exr;
 #[path = "environment_hdr.rs"]
 mod hdr;
 #[cfg(test)]

@@ -42,7 +42,7 @@ pub use environment::{
 pub use error::SceneError;
 pub use geometry::Aabb;
 pub use gpu::{
-    BvhNode, GpuBuffer, GpuLight, GpuMaterial, GpuTexture, GpuTriangle, Hit, LIGHT_QUAD_SHIFT,
+    BvhNode, GpuLight, GpuMaterial, GpuTexture, GpuTriangle, Hit, LIGHT_QUAD_SHIFT,
     LIGHT_TRIANGLE_MASK, QuadFrame, Ray, SceneGpu, SceneInfo, TriangleShading,
 };
 pub use intersect::{

@@ -97,7 +97,8 @@ pub struct Scene {
     pub triangles: Vec<Triangle>,
     pub materials: Vec<Material>,
     pub textures: Vec<Texture>,
-    pub images: Vec<Image>,
+    /// Shared with the GPU form's texture atlas ([`crate::gpu::Atlas`]), not copied into it.
+    pub images: Arc<[Image]>,
     /// The first perspective camera of the scene's node tree, if any.
     pub camera: Option<Camera>,
     /// Constant environment radiance (linear RGB) seen by rays that leave the scene, unless
@@ -147,7 +148,7 @@ impl Scene {
                 .collect(),
             materials: vec![Material::default()],
             textures: vec![],
-            images: vec![],
+            images: Arc::new([]),
             camera: None,
             environment: Vec3::ZERO,
             environment_map: None,

@@ -248,7 +248,7 @@ fn textures_are_decoded_and_packed() {
     );
     let gpu = SceneGpu::build(&scene);
     assert_eq!(
-        gpu.texels,
+        gpu.atlas.to_vec(),
         vec![0xff00_00ff, 0xff00_ff00, 0xffff_0000, 0xffff_ffff]
     );
     let t = gpu.textures[0];

@@ -129,7 +129,7 @@ fn textured_preset_has_textures_and_environment() {
     assert_eq!(scene.environment, Vec3::new(0.25, 0.3, 0.4));
     let gpu = SceneGpu::build(&scene);
     let texels: u32 = gpu.textures.iter().map(|t| t.width * t.height).sum();
-    assert_eq!(texels as usize, gpu.texels.len());
+    assert_eq!(texels as usize, gpu.atlas.len());
 }
 
 #[test]

@@ -16,8 +16,8 @@ pub struct SceneGpu {
     pub shading: Vec<TriangleShading>,
     pub materials: Vec<GpuMaterial>,
     pub textures: Vec<GpuTexture>,
-    /// All texture images, RGBA8 packed into one `u32` per texel.
-    pub texels: Vec<u32>,
+    /// All texture images, one RGBA8 `u32` per texel (the scene's own images, shared).
+    pub atlas: Atlas,
     pub lights: Vec<GpuLight>,
     /// Records of the lights that are not triangles (`GpuLight::triangle` indexes them).
     pub light_params: Vec<LightParams>,
@@ -28,18 +28,6 @@ pub struct SceneGpu {
     pub bvh_order: Vec<u32>,
     /// Depth of the deepest BVH leaf.
     pub bvh_depth: u32,
-}
-
-/// One buffer to upload.
-#[derive(Clone, Copy, Debug)]
-pub struct GpuBuffer<'a> {
-    /// Human-readable name, used in errors ("BVH node").
-    pub name: &'static str,
-    /// The GLSL array name the shaders use (`bvh_nodes`).
-    pub glsl_name: &'static str,
-    /// The contents. Never empty: an empty array is padded with one zeroed element (an empty
-    /// box for BVH nodes), so it can always back a Vulkan buffer; use `info` for the counts.
-    pub bytes: &'a [u8],
 }
 
 impl SceneGpu {
@@ -62,19 +50,12 @@ impl SceneGpu {
             })
             .collect();
 
-        // Texture atlas: images in order, one u32 per texel.
-        let mut texels = Vec::new();
-        let mut image_offsets = Vec::with_capacity(scene.images.len());
-        let mut image_means = Vec::with_capacity(scene.images.len());
-        for img in &scene.images {
-            image_offsets.push(texels.len() as u32);
-            texels.extend(
-                img.rgba8
-                    .chunks_exact(4)
-                    .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])),
-            );
-            image_means.push(mean_linear_rgb(&img.rgba8));
-        }
+        let atlas = Atlas::new(scene.images.clone());
+        let image_means: Vec<Vec3> = scene
+            .images
+            .iter()
+            .map(|img| mean_linear_rgb(&img.rgba8))
+            .collect();
         let wrap_bits = |w: Wrap| match w {
             Wrap::Repeat => TEXTURE_WRAP_REPEAT,
             Wrap::Clamp => TEXTURE_WRAP_CLAMP,
@@ -91,7 +72,7 @@ impl SceneGpu {
                     .get(i)
                     .map_or((0, 0), |img| (img.width, img.height));
                 GpuTexture {
-                    offset: image_offsets.get(i).copied().unwrap_or(0),
+                    offset: atlas.offset(i).unwrap_or(0) as u32,
                     width: w,
                     height: h,
                     flags: wrap_bits(t.wrap_s) << TEXTURE_WRAP_S_SHIFT
@@ -243,7 +224,7 @@ impl SceneGpu {
             material_count: materials.len() as u32,
             texture_count: textures.len() as u32,
             light_count: lights.len() as u32,
-            texel_count: texels.len() as u32,
+            texel_count: atlas.len() as u32,
             total_light_power: total as f32,
             environment: scene.environment,
             bounds_min: if bounds.is_empty() {
@@ -269,7 +250,7 @@ impl SceneGpu {
             shading,
             materials,
             textures,
-            texels,
+            atlas,
             lights,
             light_params,
             environment,
@@ -288,73 +269,30 @@ impl SceneGpu {
         }
     }
 
-    /// The buffers to upload, in a fixed order (nodes, triangles, shading, materials,
-    /// textures, texels, lights).
-    pub fn buffers(&self) -> [GpuBuffer<'_>; 7] {
-        fn bytes<'a, T: bytemuck::Pod>(v: &'a [T], pad: &'a T) -> &'a [u8] {
-            if v.is_empty() {
-                bytemuck::bytes_of(pad)
-            } else {
-                bytemuck::cast_slice(v)
-            }
+    /// Bytes of each array as a storage buffer (an empty one padded to one element), with
+    /// its name for errors, in binding order (nodes, triangles, shading, materials, textures,
+    /// texels, lights): what `check_limits` holds to `maxStorageBufferRange`.
+    pub fn buffer_sizes(&self) -> [(&'static str, u64); 7] {
+        fn bytes<T>(len: usize) -> u64 {
+            (len.max(1) * size_of::<T>()) as u64
         }
-        const EMPTY_NODE: BvhNode = BvhNode::EMPTY;
-        const ZERO_TRI: GpuTriangle = GpuTriangle {
-            v0: Vec3::ZERO,
-            e1: Vec3::ZERO,
-            e2: Vec3::ZERO,
-        };
-        let z_shading: &'static TriangleShading = &ZERO_SHADING;
-        let z_mat: &'static GpuMaterial = &ZERO_MATERIAL;
-        let z_tex: &'static GpuTexture = &ZERO_TEXTURE;
-        let z_light: &'static GpuLight = &ZERO_LIGHT;
         [
-            GpuBuffer {
-                name: "BVH node",
-                glsl_name: "bvh_nodes",
-                bytes: bytes(&self.nodes, &EMPTY_NODE),
-            },
-            GpuBuffer {
-                name: "BVH triangle",
-                glsl_name: "bvh_triangles",
-                bytes: bytes(&self.triangles, &ZERO_TRI),
-            },
-            GpuBuffer {
-                name: "triangle shading",
-                glsl_name: "triangle_shading",
-                bytes: bytes(&self.shading, z_shading),
-            },
-            GpuBuffer {
-                name: "material",
-                glsl_name: "materials",
-                bytes: bytes(&self.materials, z_mat),
-            },
-            GpuBuffer {
-                name: "texture table",
-                glsl_name: "textures",
-                bytes: bytes(&self.textures, z_tex),
-            },
-            GpuBuffer {
-                name: "texel",
-                glsl_name: "texels",
-                bytes: bytes(&self.texels, &0u32),
-            },
-            GpuBuffer {
-                name: "light",
-                glsl_name: "lights",
-                bytes: bytes(&self.lights, z_light),
-            },
+            ("BVH node", bytes::<BvhNode>(self.nodes.len())),
+            ("BVH triangle", bytes::<GpuTriangle>(self.triangles.len())),
+            (
+                "triangle shading",
+                bytes::<TriangleShading>(self.shading.len()),
+            ),
+            ("material", bytes::<GpuMaterial>(self.materials.len())),
+            ("texture table", bytes::<GpuTexture>(self.textures.len())),
+            ("texel", bytes::<u32>(self.atlas.len())),
+            ("light", bytes::<GpuLight>(self.lights.len())),
         ]
     }
 
-    /// Errors with the first buffer larger than `maxStorageBufferRange`.
+    /// Errors with the first array larger than `maxStorageBufferRange`.
     pub fn check_limits(&self, max_storage_buffer_range: u64) -> Result<()> {
-        let sizes: Vec<(&'static str, u64)> = self
-            .buffers()
-            .iter()
-            .map(|b| (b.name, b.bytes.len() as u64))
-            .collect();
-        check_sizes(&sizes, max_storage_buffer_range)
+        check_sizes(&self.buffer_sizes(), max_storage_buffer_range)
     }
 
     /// Closest hit (CPU twin of `bvh_closest_hit`).
@@ -390,41 +328,6 @@ impl SceneGpu {
         rays.par_iter().map(|r| self.occluded(r) as u32).collect()
     }
 }
-
-const ZERO_SHADING: TriangleShading = TriangleShading {
-    n0: Vec3::ZERO,
-    n1: Vec3::ZERO,
-    n2: Vec3::ZERO,
-    uv0: Vec2::ZERO,
-    uv1: Vec2::ZERO,
-    uv2: Vec2::ZERO,
-    material: 0,
-    light: -1,
-};
-const ZERO_MATERIAL: GpuMaterial = GpuMaterial {
-    base_color: [0.0; 4],
-    emissive: Vec3::ZERO,
-    metallic: 0.0,
-    roughness: 0.0,
-    base_color_tex: -1,
-    emissive_tex: -1,
-    mr_tex: -1,
-    flags: 0,
-    specular_color: Vec3::ZERO,
-    specular: 0.0,
-};
-const ZERO_TEXTURE: GpuTexture = GpuTexture {
-    offset: 0,
-    width: 0,
-    height: 0,
-    flags: 0,
-};
-const ZERO_LIGHT: GpuLight = GpuLight {
-    triangle: 0,
-    area: 0.0,
-    pdf: 0.0,
-    cdf: 0.0,
-};
 
 /// Mean linear RGB of an sRGB RGBA8 image.
 fn mean_linear_rgb(rgba: &[u8]) -> Vec3 {

@@ -2,32 +2,35 @@
 //! `shaders/include/generated/scene.glsl` (see [`crate::glsl_header`]), read with
 //! `layout(scalar)` so GLSL offsets equal the Rust ones.
 //!
-//! Buffers ([`SceneGpu::buffers`]) and the GLSL names the shaders use for them:
+//! The arrays ([`SceneGpu`], sized as storage buffers by [`SceneGpu::buffer_sizes`]) and the
+//! GLSL names of their storage-buffer form:
 //!
-//! | buffer             | element            | GLSL array name     | used by                |
+//! | array              | element            | GLSL array name     | used by                |
 //! |--------------------|--------------------|---------------------|------------------------|
 //! | BVH nodes          | [`BvhNode`]        | `bvh_nodes[]`       | `bvh.glsl` (test shader) |
 //! | BVH triangles      | [`GpuTriangle`]    | `bvh_triangles[]`   | `bvh.glsl` (test shader) |
 //! | triangle shading   | [`TriangleShading`]| `triangle_shading[]`|                        |
 //! | materials          | [`GpuMaterial`]    | `materials[]`       |                        |
 //! | textures           | [`GpuTexture`]     | `textures[]`        |                        |
-//! | texels             | `uint` (RGBA8)     | `texels[]`          |                        |
+//! | texels             | `uint` (RGBA8, [`Atlas`]) | `texels[]`   |                        |
 //! | lights             | [`GpuLight`]       | `lights[]`          |                        |
 //!
 //! Triangles, shading and lights are all in BVH leaf order: `Hit::triangle` indexes
 //! `bvh_triangles[]` and `triangle_shading[]` alike.
 //!
 //! The path tracer reads the same arrays repacked as texels of storage images
-//! ([`SceneGpu::texels`], layout in the `texels` module), which lavapipe loads several
+//! ([`SceneGpu::texel_sources`], layout in the `texels` module), which lavapipe loads several
 //! times faster than divergent storage-buffer elements.
 
+mod atlas;
 mod build;
 mod lights;
 mod quads;
 mod texel_source;
 mod texels;
 
-pub use build::{GpuBuffer, SceneGpu};
+pub use atlas::Atlas;
+pub use build::SceneGpu;
 pub use lights::EnvGpu;
 pub use quads::{LIGHT_QUAD_SHIFT, LIGHT_TRIANGLE_MASK, QuadFrame};
 pub use texel_source::TexelSource;

@@ -82,14 +82,12 @@ impl TexelSource<'_> {
                     .get(k)
                     .map_or([0; 4], |t| [t.offset, t.width, t.height, t.flags])
             }),
-            Array::Texels => fill(out, first, |k| {
-                let words = ATLAS_WORDS_PER_TEXEL as usize;
-                let mut t = [0; 4];
-                for (j, w) in t.iter_mut().enumerate() {
-                    *w = g.texels.get(words * k + j).copied().unwrap_or(0);
-                }
-                t
-            }),
+            Array::Texels => {
+                g.atlas.write(
+                    first * ATLAS_WORDS_PER_TEXEL as usize,
+                    bytemuck::cast_slice_mut(out),
+                );
+            }
             Array::Lights => write_lights(g, first, out),
         }
     }
@@ -252,7 +250,7 @@ impl SceneGpu {
             source(
                 "scene.texels",
                 Array::Texels,
-                self.texels
+                self.atlas
                     .len()
                     .div_ceil(ATLAS_WORDS_PER_TEXEL as usize)
                     .max(1),

@@ -251,7 +251,7 @@ mod tests {
         for (x, y) in g.textures.iter().zip(&t.textures.texels) {
             assert_eq!(*y, [x.offset, x.width, x.height, x.flags]);
         }
-        for (k, w) in g.texels.iter().enumerate() {
+        for (k, w) in g.atlas.to_vec().iter().enumerate() {
             assert_eq!(t.texels.texels[k / 4][k % 4], *w);
         }
     }
@@ -267,8 +267,14 @@ mod tests {
         let small = array("s", vec![]);
         assert_eq!((small.extent(), small.texels.len()), ((1, 1), 1));
         // Atlas words pack four to a texel, the last one zero-padded.
+        let image = crate::scene::Image {
+            name: None,
+            width: 5,
+            height: 1,
+            rgba8: (1..=5u32).flat_map(u32::to_le_bytes).collect(),
+        };
         let g = SceneGpu {
-            texels: vec![1, 2, 3, 4, 5],
+            atlas: Atlas::new(std::sync::Arc::new([image])),
             ..Default::default()
         };
         assert_eq!(g.texels().texels.texels, vec![[1, 2, 3, 4], [5, 0, 0, 0]]);

@@ -296,7 +296,7 @@ fn load_inner(
         triangles,
         materials,
         textures,
-        images,
+        images: images.into(),
         camera,
         environment,
         environment_map: None,
