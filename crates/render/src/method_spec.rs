@@ -13,7 +13,7 @@ const FIELDS: [(&str, &[&str]); 8] = [
     ("motion", &["none", "reproject"]),
     ("pairs", &["off", "thin", "adaptive", "all"]),
     ("points", &["fixed", "cycle"]),
-    ("mask", &["none", "jitter", "motion"]),
+    ("mask", &["none", "jitter", "motion", "vertex", "vertex-nosort"]),
     ("target", &["screen", "follow"]),
 ];
 
@@ -59,7 +59,15 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
         "motion" => p.motion = [Motion::None, Motion::Reproject][i],
         "pairs" => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive, Pairs::All][i],
         "points" => p.points = [Points::Fixed, Points::Cycle][i],
-        "mask" => p.mask = [MaskDims::None, MaskDims::Jitter, MaskDims::Motion][i],
+        "mask" => {
+            p.mask = [
+                MaskDims::None,
+                MaskDims::Jitter,
+                MaskDims::Motion,
+                MaskDims::Vertex,
+                MaskDims::VertexNoSort,
+            ][i]
+        }
         _ => p.target = [Target::Screen, Target::Follow][i],
     }
     Ok(())

@@ -97,6 +97,11 @@ pub enum MaskDims {
     /// With a still view and the point cycle, also the light sample on shading edges
     /// ([`crate::Method::shade_edges`]).
     Motion,
+    /// [`MaskDims::Motion`], and while the view moves also the first vertex's light sample:
+    /// every dimension of the camera ray and the first vertex from the mask.
+    Vertex,
+    /// EXPERIMENT: [`MaskDims::Vertex`] without the sort while moving.
+    VertexNoSort,
 }
 
 /// What the sorting pass ranks against while the view moves.
