@@ -316,8 +316,8 @@ impl Method {
         match self.permutation().map(|p| p.mask) {
             Some(MaskDims::Jitter) => jitter,
             Some(MaskDims::Motion) if moving => jitter | bsdf,
-            Some(MaskDims::Vertex | MaskDims::VertexNoSort) if moving => (1 << MASK_DIMS) - 1,
-            Some(MaskDims::Motion | MaskDims::Vertex | MaskDims::VertexNoSort) => jitter,
+            Some(MaskDims::Vertex) if moving => (1 << MASK_DIMS) - 1,
+            Some(MaskDims::Motion | MaskDims::Vertex) => jitter,
             _ => 0,
         }
     }
@@ -328,7 +328,9 @@ impl Method {
     /// (`TRACE_FLAG_SHADE_EDGES`). There a seed's recorded error does not predict its error at
     /// another pixel, and the mask's per-pixel walk converges better (docs/algorithm.md).
     pub fn shade_edges(self) -> bool {
-        self.has(|p| p.points == Points::Cycle && matches!(p.mask, MaskDims::Motion | MaskDims::Vertex | MaskDims::VertexNoSort))
+        self.has(|p| {
+            p.points == Points::Cycle && matches!(p.mask, MaskDims::Motion | MaskDims::Vertex)
+        })
     }
 
     /// The trace pass's flags for a jitter taken from the mask: such a method records which

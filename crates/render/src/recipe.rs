@@ -178,9 +178,7 @@ pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState) -> FrameRecipe {
         passes.push(Pass::FollowAnchors);
     }
     passes.push(Pass::Trace);
-    let skip_sort = moving
-        && m.permutation().map(|p| p.mask) == Some(crate::permutation::MaskDims::VertexNoSort);
-    let sort = m.permutation().filter(|_| !skip_sort).map(|p| {
+    let sort = m.permutation().map(|p| {
         let block = cfg.effective_block();
         // Under `grouping=still-surfaces` a moving view ranks whole blocks: the variant
         // without classes ranks one class per block exactly as zeroed classes would, and
