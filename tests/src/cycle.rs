@@ -328,7 +328,7 @@ fn still_view_reuses_gbuffer_and_classes() {
 /// without anti-aliasing jitter a still view renders exactly what `mask=none` renders (the
 /// light and BSDF samples stay the seeds'), with jitter it does not (the mask moves the
 /// rays); a moving view takes the first vertex's BSDF sample from the mask too, which
-/// `mask=jitter` never does.
+/// `mask=jitter` never does, and `mask=vertex` its light sample as well.
 #[test]
 fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
     let gpu = Gpu::new();
@@ -398,4 +398,15 @@ fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
             "{what}"
         );
     }
+    // `mask=vertex` renders as the default while still, and moving takes the light sample
+    // from the mask as well.
+    let vertex = "sort-cycle:mask=vertex";
+    assert!(
+        same(vertex, "sort-cycle", false, false),
+        "mask=vertex changed a still view"
+    );
+    assert!(
+        !same(vertex, "sort-cycle", true, true),
+        "mask=vertex moving: the light sample is not the mask's"
+    );
 }

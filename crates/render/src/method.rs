@@ -308,7 +308,7 @@ impl Method {
     /// sampler, for a view that `moving` or stands still; 0: none (the mask methods drive
     /// all of the first `MASK_DIMS`, and say so with their own mask mode).
     pub fn mask_dims(self, moving: bool) -> u32 {
-        use blueshift_layout::params::DIMS_PER_BOUNCE;
+        use blueshift_layout::params::{DIMS_PER_BOUNCE, MASK_DIMS};
         let jitter = JITTER_DIMS;
         // Vertex 0's BSDF sample: lobe choice, direction (2) and Russian roulette, after its
         // three light dimensions (see `DIMS_PER_BOUNCE`).
@@ -316,7 +316,8 @@ impl Method {
         match self.permutation().map(|p| p.mask) {
             Some(MaskDims::Jitter) => jitter,
             Some(MaskDims::Motion) if moving => jitter | bsdf,
-            Some(MaskDims::Motion) => jitter,
+            Some(MaskDims::Vertex) if moving => (1 << MASK_DIMS) - 1,
+            Some(MaskDims::Motion | MaskDims::Vertex) => jitter,
             _ => 0,
         }
     }
@@ -327,7 +328,9 @@ impl Method {
     /// (`TRACE_FLAG_SHADE_EDGES`). There a seed's recorded error does not predict its error at
     /// another pixel, and the mask's per-pixel walk converges better (docs/algorithm.md).
     pub fn shade_edges(self) -> bool {
-        self.has(|p| p.points == Points::Cycle && p.mask == MaskDims::Motion)
+        self.has(|p| {
+            p.points == Points::Cycle && matches!(p.mask, MaskDims::Motion | MaskDims::Vertex)
+        })
     }
 
     /// The trace pass's flags for a jitter taken from the mask: such a method records which

@@ -13,7 +13,7 @@ const FIELDS: [(&str, &[&str]); 8] = [
     ("motion", &["none", "reproject"]),
     ("pairs", &["off", "thin", "adaptive", "all"]),
     ("points", &["fixed", "cycle"]),
-    ("mask", &["none", "jitter", "motion"]),
+    ("mask", &["none", "jitter", "motion", "vertex"]),
     ("target", &["screen", "follow"]),
 ];
 
@@ -59,7 +59,14 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
         "motion" => p.motion = [Motion::None, Motion::Reproject][i],
         "pairs" => p.pairs = [Pairs::Off, Pairs::Thin, Pairs::Adaptive, Pairs::All][i],
         "points" => p.points = [Points::Fixed, Points::Cycle][i],
-        "mask" => p.mask = [MaskDims::None, MaskDims::Jitter, MaskDims::Motion][i],
+        "mask" => {
+            p.mask = [
+                MaskDims::None,
+                MaskDims::Jitter,
+                MaskDims::Motion,
+                MaskDims::Vertex,
+            ][i]
+        }
         _ => p.target = [Target::Screen, Target::Follow][i],
     }
     Ok(())
@@ -233,6 +240,13 @@ mod tests {
                 .mask_dims(true)
         );
         assert_eq!((moving & !still).count_ones(), 4);
+        // `mask=vertex`: the same while still; moving, every dimension up to the second vertex.
+        let v: Method = "sort-cycle:mask=vertex".parse().expect("valid");
+        assert_eq!(v.name().parse::<Method>(), Ok(v));
+        assert_eq!(v.mask_dims(false), still);
+        let all = (1 << blueshift_layout::params::MASK_DIMS) - 1;
+        assert_eq!(v.mask_dims(true), all);
+        assert!(v.shade_edges());
         let screen: Method = "sort-cycle:target=screen".parse().expect("valid");
         assert_eq!(screen.name(), "sort-cycle:target=screen");
         assert!(c.follows_target() && !screen.follows_target());
