@@ -9,8 +9,9 @@ use glam::Vec3;
 use std::path::Path;
 
 /// A map of `width x height` texels is within the limits: 2x1 to [`MAX_ENV_SIDE`] a side,
-/// at most [`MAX_ENV_TEXELS`] in all, and, with a `device`, within its light image: the map's texels and its row table (one
-/// per row) beside the one light record the image always holds (`SceneGpu::texel_sources`).
+/// at most [`MAX_ENV_TEXELS`] in all, and, with a `device`, within its light image: the map's
+/// texels and its row table (one per row) beside the one light record the image always holds
+/// (`SceneGpu::texel_sources`).
 pub(super) fn check_size(
     path: &Path,
     width: u32,
@@ -44,8 +45,8 @@ pub(super) fn check_size(
     Ok(())
 }
 
-/// `f()`, its error or panic as a decode error: the decoders read untrusted bytes (`image`'s
-/// are third-party code).
+/// `f()`, its error or panic as a decode error: the decoders read untrusted bytes (`exr` is
+/// third-party code).
 fn guarded<T>(path: &Path, f: impl FnOnce() -> Result<T, String>) -> Result<T, EnvMapError> {
     let decode = |message: String| EnvMapError::Decode {
         path: path.to_path_buf(),

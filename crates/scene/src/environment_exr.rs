@@ -139,6 +139,13 @@ mod tests {
         out.into_inner()
     }
 
+    /// This module's decoding: `(width, height, texels)`.
+    fn decodes(bytes: &[u8]) -> (u32, u32, Vec<Vec3>) {
+        let layer = header(bytes).expect("header");
+        let texels = pixels(bytes, &layer).expect("pixels");
+        (layer.width, layer.height, texels)
+    }
+
     /// `image`'s decoding (the reference), as RGB texels.
     fn image_decodes(bytes: &[u8]) -> (u32, u32, Vec<Vec3>) {
         let img = image::load_from_memory_with_format(bytes, image::ImageFormat::OpenExr)
@@ -161,13 +168,11 @@ mod tests {
         ];
         for (display, layers) in cases {
             let bytes = exr_bytes(display, layers);
-            let layer = header(&bytes).expect("header");
-            let ours = (
-                layer.width,
-                layer.height,
-                pixels(&bytes, &layer).expect("pixels"),
+            assert_eq!(
+                decodes(&bytes),
+                image_decodes(&bytes),
+                "{display:?} {layers:?}"
             );
-            assert_eq!(ours, image_decodes(&bytes), "{display:?} {layers:?}");
         }
         // RGB and RGBA f32 files as `image` writes them.
         for rgba in [false, true] {
@@ -185,13 +190,7 @@ mod tests {
             img.write_to(&mut bytes, image::ImageFormat::OpenExr)
                 .expect("exr");
             let bytes = bytes.into_inner();
-            let layer = header(&bytes).expect("header");
-            let ours = (
-                layer.width,
-                layer.height,
-                pixels(&bytes, &layer).expect("pixels"),
-            );
-            assert_eq!(ours, image_decodes(&bytes), "rgba {rgba}");
+            assert_eq!(decodes(&bytes), image_decodes(&bytes), "rgba {rgba}");
         }
     }
 
