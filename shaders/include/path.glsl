@@ -23,49 +23,92 @@ vec3 g_albedo0;
 // seed's anchor (set by main).
 uvec2 g_mask_px;
 #if TRACE_MASK
-// TRACE_FLAG_SEED_JITTER_ON_TEXTURES: the jitter dimensions come from the seed (set by main
-// from the pixel's previous primary hit); g_textured0: this frame's primary hit is textured.
-bool g_seed_jitter;
+// g_textured0: this frame's primary hit is textured (recorded for the next frame's
+// TRACE_FLAG_SEED_JITTER_ON_TEXTURES).
 bool g_textured0;
-// TRACE_FLAG_SOBOL_JITTER on a pixel whose previous primary hit was untextured (set by main):
-// the jitter walks Sobol's points instead of R2's.
-bool g_sobol_jitter;
-// TRACE_FLAG_SHADE_EDGES on a pixel the sorting pass marked PRIMARY_SHADE_EDGE (set by main):
-// the light sample (dimensions 2 and 3) comes from the mask.
-bool g_shade_edge;
 #endif
 
-// Sample dimension `dim` of sample `index` for this pixel: from the mask in the mask modes
-// (first MASK_DIMS dimensions, or those the flags' dimension bits select; read at g_mask_px,
-// each at its own fixed offset so dimensions decorrelate, rotated by the golden ratio per
-// sample for spp > 1), else from the seeded sampler.
-float sample_dim(uvec2 px, uint seed, uint index, uint s, uint dim) {
-    float x = to_unit(TRACE_SAMPLE_BITS(seed, index, dim));
 #if TRACE_MASK
+// The mask's share of the first MASK_DIMS sample dimensions (the camera jitter and the first
+// vertex), fixed for the whole dispatch: bit `dim` of g_mask_from says that this pixel takes
+// dimension `dim` from the mask, g_mask_rank its value before the per-sample golden-ratio
+// step, g_mask_turn its rotation (MASK_MODE_ROTATE). mask_init reads them once in main:
+// llvmpipe runs every branch, so a read in sample_dim cost a gather and its address
+// arithmetic for each of the 9 dimensions at every path vertex of every sample.
+uint g_mask_from;
+float g_mask_rank[MASK_DIMS];
+float g_mask_turn[MASK_DIMS];
+
+// Whether a pixel takes mask dimension `dim` (the first MASK_DIMS dimensions, or those the
+// flags' dimension bits select, or with `shade_edge` the light sample's two; the jitter's
+// two not with `seed_jitter`), and its value, read at g_mask_px, each dimension at its own
+// fixed offset so the dimensions decorrelate. The mask's side is a power of two
+// (blueshift_assets checks every mask it loads): the wrap is a bit mask and the rank's scale
+// exact as a product.
+#define MASK_INIT(dim)                                                                         \
+    {                                                                                          \
+        bool light = dim == 2u || dim == 3u;                                                   \
+        bool take = (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u || (light && shade_edge)) && \
+                    !(dim < 2u && seed_jitter);                                                \
+        if (P.mask_mode != MASK_MODE_NONE && take) g_mask_from |= 1u << dim;                  \
+        uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) +                       \
+                   dim * uvec2(MASK_DIM_OFFSET_X, MASK_DIM_OFFSET_Y)) & (n - 1u);              \
+        g_mask_rank[dim] = (float(mask[(layer * n + q.y) * n + q.x]) + 0.5) * scale;           \
+        /* Rotated in 32-bit fixed point: mask_step R2 steps, exact for any count, or for the  \
+           jitter with TRACE_FLAG_SOBOL_JITTER point mask_step of a Sobol sequence. */         \
+        bool sobol_walk = dim < 2u && sobol_jitter;                                            \
+        g_mask_turn[dim] = to_unit(sobol_walk ? sobol(P.mask_step, dim)                        \
+                                              : P.mask_step * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y)); \
+    }
+
+// Sets g_mask_*, after main has set g_mask_px. The pixel's flags (main sets them from its
+// previous primary hit): `seed_jitter` (TRACE_FLAG_SEED_JITTER_ON_TEXTURES on a textured
+// one) takes the jitter from the seed; `sobol_jitter` (TRACE_FLAG_SOBOL_JITTER on an
+// untextured one) walks Sobol's points instead of R2's for it; `shade_edge`
+// (TRACE_FLAG_SHADE_EDGES on a pixel the sorting pass marked PRIMARY_SHADE_EDGE) takes the
+// light sample (dimensions 2 and 3) from the mask.
+void mask_init(bool seed_jitter, bool sobol_jitter, bool shade_edge) {
     uint dim_set = P.flags >> TRACE_FLAG_MASK_DIMS_SHIFT;
-    bool light = dim == 2u || dim == 3u;
-    bool from_mask = dim < MASK_DIMS &&
-                     (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u || (light && g_shade_edge)) &&
-                     !(dim < 2u && g_seed_jitter);
-    if (P.mask_mode != MASK_MODE_NONE && from_mask) {
-        uint n = P.mask_size;
-        uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) + dim * uvec2(MASK_DIM_OFFSET_X, MASK_DIM_OFFSET_Y)) % n;
-        uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.mask_step : 0u;
-        uint rank = mask[(layer * n + q.y) * n + q.x];
-        x = fract((float(rank) + 0.5) / float(n * n) + float(s) * GOLDEN);
-        if (P.mask_mode == MASK_MODE_ROTATE) {
-            // Rotated in 32-bit fixed point: mask_step R2 steps, exact for any count, or for
-            // the jitter with TRACE_FLAG_SOBOL_JITTER point mask_step of a Sobol sequence.
-            bool sobol_walk = dim < 2u && g_sobol_jitter;
-            uint r = sobol_walk ? sobol(P.mask_step, dim)
-                                : P.mask_step * ((dim & 1u) == 0u ? R2_ALPHA_X : R2_ALPHA_Y);
-            x = fract(x + to_unit(r));
-        }
+    uint n = P.mask_size;
+    uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.mask_step : 0u;
+    float scale = 1.0 / float(n * n);
+    g_mask_from = 0u;
+    MASK_INIT(0u) MASK_INIT(1u) MASK_INIT(2u) MASK_INIT(3u) MASK_INIT(4u)
+    MASK_INIT(5u) MASK_INIT(6u) MASK_INIT(7u) MASK_INIT(8u)
+}
+#undef MASK_INIT
+#endif
+
+// Sample dimension `dim` (< MASK_DIMS, a constant at every call) of sample `s` at path vertex
+// `vertex` (the jitter's two: 0) for this pixel, given the seeded sampler's `bits` for it:
+// at vertex 0 from the mask where mask_init said so (rotated by the golden ratio per sample for
+// spp > 1), else the sampler's.
+float sample_dim(uint bits, uint s, uint dim, uint vertex) {
+    float x = to_unit(bits);
+#if TRACE_MASK
+    if (vertex == 0u && ((g_mask_from >> dim) & 1u) != 0u) {
+        x = fract(g_mask_rank[dim] + float(s) * GOLDEN);
+        if (P.mask_mode == MASK_MODE_ROTATE) x = fract(x + g_mask_turn[dim]);
     }
 #endif
     return x;
 }
 
+// The seeded sampler's bits of the 7 dimensions of one path vertex, d .. d + 6 (d = 2 + 7b:
+// odd at odd vertices), from the four pairs that hold them (one unused dimension).
+void vertex_bits(uint seed, uint index, uint d, out uint u[7]) {
+    uint p = d >> 1u;
+    bool odd = (d & 1u) != 0u;
+    uvec2 a = TRACE_SAMPLE_PAIR(seed, index, p), b = TRACE_SAMPLE_PAIR(seed, index, p + 1u),
+          c = TRACE_SAMPLE_PAIR(seed, index, p + 2u), e = TRACE_SAMPLE_PAIR(seed, index, p + 3u);
+    u[0] = odd ? a.y : a.x;
+    u[1] = odd ? b.x : a.y;
+    u[2] = odd ? b.y : b.x;
+    u[3] = odd ? c.x : b.y;
+    u[4] = odd ? c.y : c.x;
+    u[5] = odd ? e.x : c.y;
+    u[6] = odd ? e.y : e.x;
+}
 float power_heuristic(float a, float b) {
     float a2 = a * a;
     return a2 / max(a2 + b * b, 1e-30);
@@ -301,8 +344,9 @@ struct PathState {
 
 // The camera ray of sample `s` (sample index `index`) through pixel px.
 PathState path_start(uvec2 px, uint seed, uint index, uint s) {
+    uvec2 j = TRACE_SAMPLE_PAIR(seed, index, 0u);
     vec2 jitter = (P.flags & TRACE_FLAG_NO_JITTER) == 0u
-        ? vec2(sample_dim(px, seed, index, s, 0u), sample_dim(px, seed, index, s, 1u))
+        ? vec2(sample_dim(j.x, s, 0u, 0u), sample_dim(j.y, s, 1u, 0u))
         : vec2(0.5);
     vec2 ndc = (vec2(px) + P.view_offset + jitter) / P.view_size * 2.0 - 1.0;
     vec3 dir = normalize(P.cam_forward + ndc.x * P.cam_right - ndc.y * P.cam_up);
@@ -343,12 +387,15 @@ bool path_step(uvec2 px, uint seed, uint index, uint s, inout PathState st) {
     if (st.b == P.max_bounces) return true;
     uint d = 2u + st.b * DIMS_PER_BOUNCE;
     vec3 wo = -st.ray.dir;
-    vec3 ul = vec3(sample_dim(px, seed, index, s, d), sample_dim(px, seed, index, s, d + 1u),
-                   sample_dim(px, seed, index, s, d + 2u));
+    uint u[7];
+    vertex_bits(seed, index, d, u);
+    // (The mask's dimensions are those of vertex 0: 2 + k for the vertex's k-th.)
+    uint b = st.b;
+    vec3 ul = vec3(sample_dim(u[0], s, 2u, b), sample_dim(u[1], s, 3u, b), sample_dim(u[2], s, 4u, b));
     st.l += st.throughput * sample_light(srf, m, wo, ul);
     vec3 wi;
-    float u_lobe = sample_dim(px, seed, index, s, d + 3u);
-    vec2 ub = vec2(sample_dim(px, seed, index, s, d + 4u), sample_dim(px, seed, index, s, d + 5u));
+    float u_lobe = sample_dim(u[3], s, 5u, b);
+    vec2 ub = vec2(sample_dim(u[4], s, 6u, b), sample_dim(u[5], s, 7u, b));
     if (!brdf_sample(m, srf.n, wo, u_lobe, ub, wi) || dot(srf.ng, wi) <= 0.0) return true;
     float pdf = brdf_pdf(m, srf.n, wo, wi);
     if (pdf <= 0.0) return true;
@@ -356,7 +403,7 @@ bool path_step(uvec2 px, uint seed, uint index, uint s, inout PathState st) {
     st.prev_pdf = pdf;
     if (st.b >= 3u) {  // Russian roulette after a few bounces
         float q = clamp(max(st.throughput.r, max(st.throughput.g, st.throughput.b)), 0.05, 1.0);
-        if (sample_dim(px, seed, index, s, d + 6u) >= q) return true;
+        if (sample_dim(u[6], s, 8u, b) >= q) return true;
         st.throughput /= q;
     }
     st.ray = Ray(offset_origin(srf.p, srf.ng), 0.0, wi, 1e30);

@@ -44,23 +44,40 @@ uint hash_combine(uint seed, uint v) {
     return pcg_hash(seed ^ (v + 0x9e3779b9u + (seed << 6u) + (seed >> 2u)));
 }
 
+// Dimensions 0 and 1 of the Sobol point at `shuffled` (an already scrambled index), each
+// scrambled with its own seed from the pair's `key`: the tail every Sobol-based sampler here
+// shares. Dimension 0's point is the index itself (sobol_reversed), and without the double bit
+// reversal of nested_uniform_scramble(sobol(shuffled, d), ...).
+uvec2 scrambled_sobol_pair(uint shuffled, uint key) {
+    return uvec2(bitfieldReverse(owen_hash(shuffled, hash_combine(key, 1u))),
+                 bitfieldReverse(owen_hash(sobol_reversed(shuffled, 1u), hash_combine(key, 2u))));
+}
+
+// The samplers below draw dimensions two at a time (SOBOL_GROUP_DIMS = 2): `pair` p holds
+// dimensions 2p and 2p + 1, which share their scramble key and shuffled index, so the trace
+// computes both at once (path.glsl vertex_bits); the one-dimension forms pick one of them.
+uint pair_component(uvec2 bits, uint dim) { return (dim & 1u) == 0u ? bits.x : bits.y; }
+
+uvec2 owen_sobol_pair(uint seed, uint index, uint pair) {
+    uint group_seed = hash_combine(seed, pair);
+    return scrambled_sobol_pair(nested_uniform_scramble(index, group_seed), group_seed);
+}
+
 uint owen_sobol_bits(uint seed, uint index, uint dim) {
-    uint group_seed = hash_combine(seed, dim / SOBOL_GROUP_DIMS);
-    uint d = dim % SOBOL_GROUP_DIMS;
-    uint shuffled = nested_uniform_scramble(index, group_seed);
-    // nested_uniform_scramble(sobol(shuffled, d), ...) without the double bit reversal.
-    return bitfieldReverse(owen_hash(sobol_reversed(shuffled, d), hash_combine(group_seed, d + 1u)));
+    return pair_component(owen_sobol_pair(seed, index, dim >> 1u), dim);
 }
 
 // Seeds of one block (seed >> 6) share the scrambled (0,2)-sequence of each dimension pair;
 // seed & 63 at sample `index` takes point index * 64 + (seed & 63), shuffled per pair within
 // its aligned 64-point chunk, so a block's seeds hold a (0,6,2)-net at every index (CPU twin:
 // sobol.rs block_net_bits).
+uvec2 block_net_pair(uint seed, uint index, uint pair) {
+    uint key = hash_combine(seed >> 6u, pair);
+    return scrambled_sobol_pair(nested_uniform_scramble((index << 6u) | (seed & 63u), key), key);
+}
+
 uint block_net_bits(uint seed, uint index, uint dim) {
-    uint key = hash_combine(seed >> 6u, dim >> 1u);
-    uint point = nested_uniform_scramble((index << 6u) | (seed & 63u), key);
-    uint d = dim & 1u;
-    return bitfieldReverse(owen_hash(sobol_reversed(point, d), hash_combine(key, d + 1u)));
+    return pair_component(block_net_pair(seed, index, dim >> 1u), dim);
 }
 
 uint r2_bits(uint seed, uint index, uint dim) {
@@ -69,32 +86,40 @@ uint r2_bits(uint seed, uint index, uint dim) {
 }
 
 // HBO+19 keyed Owen-Sobol (crates/sampling/src/hbo19.rs): `key` = (scramble, rank) of the
-// pair holding `dim`; dimensions past the `pairs` optimised pairs are plain Owen-Sobol.
-uint hbo19_bits(uvec2 key, uint pairs, uint seed, uint index, uint dim) {
-    if (dim >= 2u * pairs) return owen_sobol_bits(seed, index, dim);
-    uint d = dim & 1u;
-    uint shuffled = nested_uniform_scramble(index ^ key.y, key.x);
-    return bitfieldReverse(owen_hash(sobol_reversed(shuffled, d), hash_combine(key.x, d + 1u)));
+// pair; pairs past the `pairs` optimised ones are plain Owen-Sobol.
+uvec2 hbo19_pair(uvec2 key, uint pairs, uint seed, uint index, uint pair) {
+    if (pair >= pairs) return owen_sobol_pair(seed, index, pair);
+    return scrambled_sobol_pair(nested_uniform_scramble(index ^ key.y, key.x), key.x);
 }
 
 #ifdef HBO19_KEYS
 // HBO19_KEYS names the includer's uvec2 key buffer: [0] = (tile edge, pairs), then the keys
-// at 1 + (tile position * pairs + pair); the seed is the tile position (KeyTable::bits).
-uint hbo19_lookup_bits(uint seed, uint index, uint dim) {
+// at 1 + (tile position * pairs + pair); the seed is the tile position (KeyTable::bits). The
+// tile edge is a power of two (KeyTable::new checks it).
+uvec2 hbo19_lookup_pair(uint seed, uint index, uint pair) {
     uvec2 hdr = HBO19_KEYS[0];
-    uint pair = min(dim / 2u, hdr.y - 1u);
-    uvec2 key = HBO19_KEYS[1u + (seed % (hdr.x * hdr.x)) * hdr.y + pair];
-    return hbo19_bits(key, hdr.y, seed, index, dim);
+    uint tile_pair = min(pair, hdr.y - 1u);
+    uvec2 key = HBO19_KEYS[1u + (seed & (hdr.x * hdr.x - 1u)) * hdr.y + tile_pair];
+    return hbo19_pair(key, hdr.y, seed, index, pair);
+}
+
+uint hbo19_lookup_bits(uint seed, uint index, uint dim) {
+    return pair_component(hbo19_lookup_pair(seed, index, dim >> 1u), dim);
 }
 #endif
 
-// SAMPLER_HBO19 needs a key table (hbo19_lookup_bits); without one it is plain Owen-Sobol,
+// SAMPLER_HBO19 needs a key table (hbo19_lookup_pair); without one it is plain Owen-Sobol,
 // as Samples::bits without keys.
+uvec2 sample_pair_bits(uint kind, uint seed, uint index, uint pair) {
+    if (kind == SAMPLER_SOBOL || kind == SAMPLER_HBO19) return owen_sobol_pair(seed, index, pair);
+    if (kind == SAMPLER_R2)
+        return uvec2(r2_bits(seed, index, 2u * pair), r2_bits(seed, index, 2u * pair + 1u));
+    if (kind == SAMPLER_BLOCKNET) return block_net_pair(seed, index, pair);
+    return uvec2(hash3(seed, index, 2u * pair), hash3(seed, index, 2u * pair + 1u));
+}
+
 uint sample_bits(uint kind, uint seed, uint index, uint dim) {
-    if (kind == SAMPLER_SOBOL || kind == SAMPLER_HBO19) return owen_sobol_bits(seed, index, dim);
-    if (kind == SAMPLER_R2) return r2_bits(seed, index, dim);
-    if (kind == SAMPLER_BLOCKNET) return block_net_bits(seed, index, dim);
-    return hash3(seed, index, dim);
+    return pair_component(sample_pair_bits(kind, seed, index, dim >> 1u), dim);
 }
 
 float sample_1d(uint kind, uint seed, uint index, uint dim) {

@@ -300,10 +300,9 @@ void main() {
 #define LOAD_MEAN(s, at)
     // The block net's point the seed takes at the next phase, in the first vertex's light
     // sample dimensions, as its index along the Hilbert curve.
-#define SAMPLE_KEY(s) \
-        val[s] = float(sample_key_code( \
-            block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM), \
-            block_net_bits(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM + 1u)));
+#define SAMPLE_KEY(s) { \
+        uvec2 key_bits = block_net_pair(seed[s], p.cycle_next_phase, SAMPLE_KEY_DIM >> 1u); \
+        val[s] = float(sample_key_code(key_bits.x, key_bits.y)); }
 #else
 #define SAMPLE_KEY(s)
     uint means[SORT_SLOTS];  // the running means in fixed point (shade_edge_fixed)

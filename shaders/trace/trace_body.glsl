@@ -18,8 +18,8 @@
 //                       the BRDF is Lambert alone (BRDF_LAMBERT, brdf.glsl); 0: full glTF
 //   TRACE_LIGHTS        1: punctual lights and environment maps (lights.glsl); 0: emissive
 //                       triangles and a constant environment only (optional, default 0)
-//   TRACE_HBO19         1: samples from hbo19_lookup_bits with the key table at binding 12
-//                       (optional, default 0: sample_bits(TRACE_SAMPLER_KIND, ...))
+//   TRACE_HBO19         1: samples from hbo19_lookup_pair with the key table at binding 12
+//                       (optional, default 0: sample_pair_bits(TRACE_SAMPLER_KIND, ...))
 //   TRACE_LOOP_STATS    1: count every loop's iterations per batch and per lane
 //                       (trace/trace_loop_stats*; optional, default 0)
 // The variants differ only in dead code: llvmpipe runs both sides of every branch, so
@@ -38,10 +38,11 @@ layout(set = 0, binding = 12, scalar) readonly buffer Hbo19Keys { uvec2 hbo19_ke
 #ifndef TRACE_HBO19
 #define TRACE_HBO19 0
 #endif
+// The sampler's dimensions 2 * pair and 2 * pair + 1 (drawn a pair at a time: path.glsl).
 #if TRACE_HBO19
-#define TRACE_SAMPLE_BITS(seed, index, dim) hbo19_lookup_bits(seed, index, dim)
+#define TRACE_SAMPLE_PAIR(seed, index, pair) hbo19_lookup_pair(seed, index, pair)
 #else
-#define TRACE_SAMPLE_BITS(seed, index, dim) sample_bits(TRACE_SAMPLER_KIND, seed, index, dim)
+#define TRACE_SAMPLE_PAIR(seed, index, pair) sample_pair_bits(TRACE_SAMPLER_KIND, seed, index, pair)
 #endif
 
 layout(local_size_x = TRACE_GROUP_X, local_size_y = TRACE_GROUP_Y) in;
@@ -182,9 +183,9 @@ void main() {
     g_textured0 = false;
     uint primary = primary_flags[flag_index];
     bool was_textured = (primary & PRIMARY_TEXTURED) != 0u;
-    g_shade_edge = (P.flags & TRACE_FLAG_SHADE_EDGES) != 0u && (primary & PRIMARY_SHADE_EDGE) != 0u;
-    g_seed_jitter = (P.flags & TRACE_FLAG_SEED_JITTER_ON_TEXTURES) != 0u && was_textured;
-    g_sobol_jitter = (P.flags & TRACE_FLAG_SOBOL_JITTER) != 0u && !was_textured;
+    mask_init((P.flags & TRACE_FLAG_SEED_JITTER_ON_TEXTURES) != 0u && was_textured,
+              (P.flags & TRACE_FLAG_SOBOL_JITTER) != 0u && !was_textured,
+              (P.flags & TRACE_FLAG_SHADE_EDGES) != 0u && (primary & PRIMARY_SHADE_EDGE) != 0u);
 #endif
     uint s0 = P.sample_index, count = P.sample_count;
     vec3 l = trace_paths(px, seed, s0, count) / float(count);

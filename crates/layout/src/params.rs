@@ -92,6 +92,8 @@ pub const CYCLE_FRAMES: u32 = 16;
 /// with the next, one pair of the block net, whose position ranks the seeds under motion
 /// (`CycleParams::sample_keys`).
 pub const SAMPLE_KEY_DIM: u32 = 2;
+// The sorting pass draws the two as one sampler pair (sort_seeds.glsl).
+const _: () = assert!(SAMPLE_KEY_DIM % 2 == 0);
 
 /// Bits per coordinate of the sample key's grid. A block's 64 points at one phase are a
 /// (0,6,2)-net in the key's pair, one point in each cell of the 8 x 8 grid, so the order along
@@ -283,6 +285,9 @@ pub const MASK_DIMS: u32 = 9;
 /// Sample dimensions: 0-1 camera jitter; then per path vertex b, base 2 + 7b: light point (2),
 /// light choice, lobe choice, BSDF direction (2), Russian roulette.
 pub const DIMS_PER_BOUNCE: u32 = 7;
+// The trace draws a vertex's dimensions as the four sampler pairs that hold them
+// (path.glsl vertex_bits), which is written for seven.
+const _: () = assert!(DIMS_PER_BOUNCE == 7);
 
 gpu_struct! {
     /// Push constants of `trace/accumulate` and `trace/tonemap`.
