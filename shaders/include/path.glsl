@@ -95,20 +95,14 @@ float sample_dim(uint bits, uint s, uint dim, uint vertex) {
 }
 
 // The seeded sampler's bits of the 7 dimensions of one path vertex, d .. d + 6 (d = 2 + 7b:
-// odd at odd vertices), from the four pairs that hold them (one unused dimension).
+// odd at odd vertices), from the four pairs that hold them.
 void vertex_bits(uint seed, uint index, uint d, out uint u[7]) {
     uint p = d >> 1u;
-    bool odd = (d & 1u) != 0u;
-    uvec2 a = TRACE_SAMPLE_PAIR(seed, index, p), b = TRACE_SAMPLE_PAIR(seed, index, p + 1u),
-          c = TRACE_SAMPLE_PAIR(seed, index, p + 2u), e = TRACE_SAMPLE_PAIR(seed, index, p + 3u);
-    u[0] = odd ? a.y : a.x;
-    u[1] = odd ? b.x : a.y;
-    u[2] = odd ? b.y : b.x;
-    u[3] = odd ? c.x : b.y;
-    u[4] = odd ? c.y : c.x;
-    u[5] = odd ? e.x : c.y;
-    u[6] = odd ? e.y : e.x;
+    seven_from_pairs(TRACE_SAMPLE_PAIR(seed, index, p), TRACE_SAMPLE_PAIR(seed, index, p + 1u),
+                     TRACE_SAMPLE_PAIR(seed, index, p + 2u), TRACE_SAMPLE_PAIR(seed, index, p + 3u),
+                     d, u);
 }
+
 float power_heuristic(float a, float b) {
     float a2 = a * a;
     return a2 / max(a2 + b * b, 1e-30);

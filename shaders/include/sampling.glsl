@@ -122,6 +122,19 @@ uint sample_bits(uint kind, uint seed, uint index, uint dim) {
     return pair_component(sample_pair_bits(kind, seed, index, dim >> 1u), dim);
 }
 
+// Dimensions d .. d + 6 (a path vertex's seven) from the four pairs that hold them, `a` being
+// pair d >> 1 (of the eight dimensions, the first is unused when d is odd, the last when even).
+void seven_from_pairs(uvec2 a, uvec2 b, uvec2 c, uvec2 e, uint d, out uint u[7]) {
+    bool odd = (d & 1u) != 0u;
+    u[0] = odd ? a.y : a.x;
+    u[1] = odd ? b.x : a.y;
+    u[2] = odd ? b.y : b.x;
+    u[3] = odd ? c.x : b.y;
+    u[4] = odd ? c.y : c.x;
+    u[5] = odd ? e.x : c.y;
+    u[6] = odd ? e.y : e.x;
+}
+
 float sample_1d(uint kind, uint seed, uint index, uint dim) {
     return to_unit(sample_bits(kind, seed, index, dim));
 }

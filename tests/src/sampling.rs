@@ -1,4 +1,5 @@
-//! GLSL sampling.glsl == Rust blueshift_sampling for every sampler, bit for bit.
+//! GLSL sampling.glsl == Rust blueshift_sampling for every sampler, bit for bit, one
+//! dimension at a time and as the trace draws a path vertex's seven (from pairs).
 use crate::{Gpu, groups_for};
 use blueshift_device::{Binding, Buffer};
 use blueshift_sampling::hbo19::KeyTable;
@@ -37,7 +38,7 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
         })
         .collect();
     let inb = Buffer::from_slice(gpu.dev(), "sampling.inputs", &inputs).unwrap();
-    let out = gpu.output::<[u32; 5]>("sampling.results", n as usize);
+    let out = gpu.output::<[u32; 12]>("sampling.results", n as usize);
     gpu.run(
         &p,
         &[
@@ -48,7 +49,7 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
         bytemuck::bytes_of(&n),
         [groups_for(n, 64), 1, 1],
     );
-    let got = out.read::<[u32; 5]>().unwrap();
+    let got = out.read::<[u32; 12]>().unwrap();
     let s = Samples::with_keys(table);
     for (q, g) in inputs.iter().zip(&got) {
         let want = [
@@ -59,6 +60,10 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
             Sampler::BlockNet,
         ]
         .map(|m| s.bits(m, q[0], q[1], q[2]));
-        assert_eq!(*g, want, "seed {} index {} dim {}", q[0], q[1], q[2]);
+        assert_eq!(g[..5], want, "seed {} index {} dim {}", q[0], q[1], q[2]);
+        // Odd and even first dimensions both occur (dim = i mod 64).
+        let vertex: [u32; 7] =
+            std::array::from_fn(|k| s.bits(Sampler::BlockNet, q[0], q[1], q[2] + k as u32));
+        assert_eq!(g[5..], vertex, "vertex from dim {}: seed {} index {}", q[2], q[0], q[1]);
     }
 }
