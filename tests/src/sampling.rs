@@ -64,6 +64,13 @@ fn glsl_samplers_match_rust_twins_bit_for_bit() {
         // Odd and even first dimensions both occur (dim = i mod 64).
         let vertex: [u32; 7] =
             std::array::from_fn(|k| s.bits(Sampler::BlockNet, q[0], q[1], q[2] + k as u32));
-        assert_eq!(g[5..], vertex, "vertex from dim {}: seed {} index {}", q[2], q[0], q[1]);
+        assert_eq!(
+            g[5..],
+            vertex,
+            "vertex from dim {}: seed {} index {}",
+            q[2],
+            q[0],
+            q[1]
+        );
     }
 }
