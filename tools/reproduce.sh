@@ -369,13 +369,22 @@ for r in "${selected[@]}"; do
   done
 done
 
-# Under motion across scenes and speeds, from whichever motion runs have a report.
+# Under motion across scenes and speeds, from the four motion runs' reports; while any is
+# missing (a machine that ran only some of them) the table is left as it was rather than
+# written without that run's rows.
 if ((!quick)); then
   scenes=()
+  missing=()
   for s in cornell=motion cornell=motion-speeds textured=motion-textured edges=motion-edges; do
-    [ -f "out/results/${s#*=}/report.md" ] && scenes+=("${s%%=*}=out/results/${s#*=}/report.md")
+    if [ -f "out/results/${s#*=}/report.md" ]; then
+      scenes+=("${s%%=*}=out/results/${s#*=}/report.md")
+    else
+      missing+=("${s#*=}")
+    fi
   done
-  if ((${#scenes[@]})); then
+  if ((${#missing[@]})); then
+    echo "reproduce: the motion-scenes table is left as it was: no report for ${missing[*]}" >&2
+  else
     rows_body="$(mktemp out/results/.motion-scenes.XXXXXX)"
     tmpfiles+=("$rows_body")
     { echo; motion_rows "${scenes[@]}"; echo; } > "$rows_body"
