@@ -354,7 +354,7 @@ PathState path_start(uvec2 px, uint seed, uint index, uint s) {
 }
 
 // Extends the path by one vertex; true when the path is complete (st.l is its estimate).
-bool path_step(uvec2 px, uint seed, uint index, uint s, inout PathState st) {
+bool path_step(uint seed, uint index, uint s, inout PathState st) {
     Hit hit;
     if (!bvh_closest_hit(st.ray, hit)) {
         st.l += st.throughput * environment_seen(st.ray.dir, st.prev_pdf);
@@ -422,7 +422,7 @@ vec3 trace_paths(uvec2 px, uint seed, uint s0, uint count) {
     // form `if (path_step(..)) { ..; if (done) break; st = path_start(..); }`.)
     do {
         LOOP_TICK(TRACE_LOOP_PATH_VERTEX);
-        if (path_step(px, seed, sample_index_of(s), s, st)) {
+        if (path_step(seed, sample_index_of(s), s, st)) {
             vec3 l = st.l;
             sum += any(isnan(l)) || any(isinf(l)) ? vec3(0.0) : l;
             s++;

@@ -31,7 +31,7 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "generated/scene.glsl"
 #include "generated/params.glsl"
-// HBO+19 keys (hbo19_lookup_bits; one element (1, 1) when the method has none).
+// HBO+19 keys (hbo19_lookup_pair; one element (1, 1) when the method has none).
 layout(set = 0, binding = 12, scalar) readonly buffer Hbo19Keys { uvec2 hbo19_keys[]; };
 #define HBO19_KEYS hbo19_keys
 #include "sampling.glsl"
