@@ -327,8 +327,8 @@ fn still_view_reuses_gbuffer_and_classes() {
 /// Which dimensions sort-cycle leaves to the mask (`Method::mask_dims`), seen in its images:
 /// without anti-aliasing jitter a still view renders exactly what `mask=none` renders (the
 /// light and BSDF samples stay the seeds'), with jitter it does not (the mask moves the
-/// rays); a moving view takes the first vertex's BSDF sample from the mask too, which
-/// `mask=jitter` never does, and `mask=vertex` its light sample as well.
+/// rays); a moving view takes the first vertex's light and BSDF samples from the mask too,
+/// which `mask=jitter` never does, and `mask=motion` only its BSDF sample.
 #[test]
 fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
     let gpu = Gpu::new();
@@ -388,7 +388,14 @@ fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
             true,
             true,
             false,
-            "moving: the first bounce is not the mask's",
+            "moving: the first vertex is not the mask's",
+        ),
+        (
+            "sort-cycle:mask=motion",
+            true,
+            true,
+            false,
+            "mask=motion moving: the first bounce is not the mask's",
         ),
     ];
     for (m, no_jitter, moving, as_none, what) in cases {
@@ -398,15 +405,15 @@ fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
             "{what}"
         );
     }
-    // `mask=vertex` renders as the default while still, and moving takes the light sample
-    // from the mask as well.
-    let vertex = "sort-cycle:mask=vertex";
+    // `mask=motion` renders as the default while still; moving, it leaves the light sample
+    // to the seeds.
+    let motion = "sort-cycle:mask=motion";
     assert!(
-        same(vertex, "sort-cycle", false, false),
-        "mask=vertex changed a still view"
+        same(motion, "sort-cycle", false, false),
+        "mask=motion changed a still view"
     );
     assert!(
-        !same(vertex, "sort-cycle", true, true),
-        "mask=vertex moving: the light sample is not the mask's"
+        !same(motion, "sort-cycle", true, true),
+        "moving: the light sample is not the mask's"
     );
 }

@@ -80,7 +80,7 @@ const CYCLE: Permutation = Permutation {
     grouping: Grouping::StillSurfaces,
     transport: Transport::None,
     points: Points::Cycle,
-    mask: MaskDims::Motion,
+    mask: MaskDims::Vertex,
     target: Target::Follow,
     ..PAPER
 };
@@ -101,7 +101,8 @@ impl Method {
     });
     /// Sorting within the surfaces of fixed blocks over a cycle of block-net points per seed,
     /// against spatio-temporal mask slices ([`Points::Cycle`]) that move with the image
-    /// ([`Target::Follow`]).
+    /// ([`Target::Follow`]); while the view moves the camera ray and the first vertex draw
+    /// from the mask ([`MaskDims::Vertex`]).
     pub const SORT_CYCLE: Method = Method::Permute(CYCLE);
     /// The default of the library and of every command.
     pub const DEFAULT: Method = Method::SORT_CYCLE;

@@ -212,14 +212,14 @@ mod tests {
         assert_eq!(m.name(), "sort-retarget:key=demod,transport=grid");
         // Named after the nearest preset, whichever preset it was written from.
         let near: Method = "sort-retarget:transport=none,points=cycle,grouping=surfaces,\
-                            mask=motion,target=follow"
+                            mask=vertex,target=follow"
             .parse()
             .expect("valid");
         assert_eq!(near.name(), "sort-cycle:grouping=surfaces");
         assert_eq!(m.name().parse::<Method>(), Ok(m));
         assert!(m.shifts_grid() && m.demodulates() && !m.history_keys());
         let c: Method = "sort-retarget:transport=none,points=cycle,grouping=still-surfaces,\
-                         mask=motion,target=follow"
+                         mask=vertex,target=follow"
             .parse()
             .expect("valid");
         assert_eq!(c, Method::SORT_CYCLE);
@@ -229,9 +229,9 @@ mod tests {
         assert_eq!(plain.name(), "sort-cycle:mask=none");
         assert_eq!(plain.name().parse::<Method>(), Ok(plain));
         assert_eq!((plain.mask_dims(false), plain.mask_dims(true)), (0, 0));
-        // Moving, the mask takes the first vertex's BSDF sample too, and nothing else.
+        // Still, the mask takes the jitter only; moving, every dimension up to the second
+        // vertex.
         let (still, moving) = (c.mask_dims(false), c.mask_dims(true));
-        assert_eq!(still & !moving, 0);
         assert_eq!(
             still,
             "sort-cycle:mask=jitter"
@@ -239,14 +239,16 @@ mod tests {
                 .unwrap()
                 .mask_dims(true)
         );
-        assert_eq!((moving & !still).count_ones(), 4);
-        // `mask=vertex`: the same while still; moving, every dimension up to the second vertex.
-        let v: Method = "sort-cycle:mask=vertex".parse().expect("valid");
-        assert_eq!(v.name().parse::<Method>(), Ok(v));
-        assert_eq!(v.mask_dims(false), still);
         let all = (1 << blueshift_layout::params::MASK_DIMS) - 1;
-        assert_eq!(v.mask_dims(true), all);
-        assert!(v.shade_edges());
+        assert_eq!(moving, all);
+        // `mask=motion`: the same while still; moving, the first vertex's BSDF sample (four
+        // dimensions) but not its light sample.
+        let motion: Method = "sort-cycle:mask=motion".parse().expect("valid");
+        assert_eq!(motion.name(), "sort-cycle:mask=motion");
+        assert_eq!(motion.name().parse::<Method>(), Ok(motion));
+        assert_eq!(motion.mask_dims(false), still);
+        assert_eq!((motion.mask_dims(true) & !still).count_ones(), 4);
+        assert!(motion.shade_edges() && c.shade_edges());
         let screen: Method = "sort-cycle:target=screen".parse().expect("valid");
         assert_eq!(screen.name(), "sort-cycle:target=screen");
         assert!(c.follows_target() && !screen.follows_target());
