@@ -222,5 +222,8 @@ fn the_default_is_blue_per_frame_and_converges_under_an_ema() {
 
 #[test]
 fn the_default_is_blue_per_frame_and_converges_under_a_taa_along_a_strafe() {
-    check("strafe:2.5", 0.8, 0.95, 0.35);
+    // Moving, the camera ray and the first vertex draw from the mask, so in direct light a
+    // frame is about as blue as `mask-r2`'s (0.56 here); with the light sample left to the
+    // seeds (`mask=motion`) it was 0.66.
+    check("strafe:2.5", 0.62, 0.9, 0.35);
 }
