@@ -48,7 +48,7 @@ pub use config::{Accumulation, RenderConfig};
 pub use error::{RenderError, Result};
 pub use method::{
     GRID_BLOCK, Grouping, Key, MaskDims, Method, Motion, PAPER_BLOCK, Pairs, Permutation, Points,
-    Target, Transport,
+    Target, Transport, Without,
 };
 pub use motion::motion_params;
 pub use readback::HistoryState;

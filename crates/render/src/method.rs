@@ -3,7 +3,7 @@
 use blueshift_sampling::Sampler;
 
 pub use crate::permutation::{
-    Grouping, Key, MaskDims, Motion, Pairs, Permutation, Points, Target, Transport,
+    Grouping, Key, MaskDims, Motion, Pairs, Permutation, Points, Target, Transport, Without,
 };
 
 /// A way of choosing per-pixel randomness over frames.
@@ -58,6 +58,7 @@ const PAPER: Permutation = Permutation {
     points: Points::Fixed,
     mask: MaskDims::None,
     target: Target::Screen,
+    without: Without::Nothing,
 };
 
 const SORT: Permutation = Permutation {
@@ -74,6 +75,7 @@ const HISTORY: Permutation = Permutation {
     points: Points::Fixed,
     mask: MaskDims::None,
     target: Target::Screen,
+    without: Without::Nothing,
 };
 
 const CYCLE: Permutation = Permutation {
@@ -330,7 +332,9 @@ impl Method {
     /// another pixel, and the mask's per-pixel walk converges better (docs/algorithm.md).
     pub fn shade_edges(self) -> bool {
         self.has(|p| {
-            p.points == Points::Cycle && matches!(p.mask, MaskDims::Motion | MaskDims::Vertex)
+            p.points == Points::Cycle
+                && matches!(p.mask, MaskDims::Motion | MaskDims::Vertex)
+                && p.without != Without::ShadeEdges
         })
     }
 
@@ -347,15 +351,37 @@ impl Method {
             TRACE_FLAG_RECORD_PRIMARY, TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SHADE_EDGES,
             TRACE_FLAG_SOBOL_JITTER,
         };
+        let without = |w| self.has(|p| p.without == w);
         if self.mask_dims(moving) & JITTER_DIMS == 0 {
             0
         } else if moving {
-            TRACE_FLAG_RECORD_PRIMARY | TRACE_FLAG_SEED_JITTER_ON_TEXTURES
-        } else if self.shade_edges() {
-            TRACE_FLAG_RECORD_PRIMARY | TRACE_FLAG_SOBOL_JITTER | TRACE_FLAG_SHADE_EDGES
+            let textures = if without(Without::TextureJitter) {
+                0
+            } else {
+                TRACE_FLAG_SEED_JITTER_ON_TEXTURES
+            };
+            TRACE_FLAG_RECORD_PRIMARY | textures
         } else {
-            TRACE_FLAG_RECORD_PRIMARY | TRACE_FLAG_SOBOL_JITTER
+            let sobol = if without(Without::SobolJitter) {
+                0
+            } else {
+                TRACE_FLAG_SOBOL_JITTER
+            };
+            let edges = if self.shade_edges() {
+                TRACE_FLAG_SHADE_EDGES
+            } else {
+                0
+            };
+            TRACE_FLAG_RECORD_PRIMARY | sobol | edges
         }
+    }
+
+    /// Whether a moving view's point cycle ranks the seeds by their next light sample
+    /// (`SortParams::cycle_sample_keys`; the sampler must be the block nets the keys index).
+    pub fn ranks_by_sample_keys(self, sampler: Sampler) -> bool {
+        self.cycles_points()
+            && sampler == Sampler::BlockNet
+            && self.has(|p| p.without != Without::SampleKeys)
     }
 
     /// Whether the pairs' checkerboard phase is a hash bit of the frame rather than its parity

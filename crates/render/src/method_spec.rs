@@ -2,11 +2,11 @@
 //! e.g. `sort-retarget:transport=none` (the paper's sort alone). Each field overrides the
 //! preset's.
 use crate::method::{
-    Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Target, Transport,
+    Grouping, Key, MaskDims, Method, Motion, Pairs, Permutation, Points, Target, Transport, Without,
 };
 
 /// (field, values in order of their enum) of every field, for parsing and help.
-const FIELDS: [(&str, &[&str]); 8] = [
+const FIELDS: [(&str, &[&str]); 9] = [
     ("key", &["raw", "demod", "history"]),
     ("grouping", &["blocks", "surfaces", "still-surfaces"]),
     ("transport", &["none", "retarget", "grid"]),
@@ -15,10 +15,20 @@ const FIELDS: [(&str, &[&str]); 8] = [
     ("points", &["fixed", "cycle"]),
     ("mask", &["none", "jitter", "motion", "vertex"]),
     ("target", &["screen", "follow"]),
+    (
+        "without",
+        &[
+            "none",
+            "sample-keys",
+            "shade-edges",
+            "texture-jitter",
+            "sobol-jitter",
+        ],
+    ),
 ];
 
 /// (field, value) of each field of `p`, in the order of [`FIELDS`].
-pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 8] {
+pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 9] {
     let idx = [
         p.key as usize,
         p.grouping as usize,
@@ -28,6 +38,7 @@ pub(crate) fn fields(p: &Permutation) -> [(&'static str, &'static str); 8] {
         p.points as usize,
         p.mask as usize,
         p.target as usize,
+        p.without as usize,
     ];
     std::array::from_fn(|i| (FIELDS[i].0, FIELDS[i].1[idx[i]]))
 }
@@ -67,7 +78,16 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
                 MaskDims::Vertex,
             ][i]
         }
-        _ => p.target = [Target::Screen, Target::Follow][i],
+        "target" => p.target = [Target::Screen, Target::Follow][i],
+        _ => {
+            p.without = [
+                Without::Nothing,
+                Without::SampleKeys,
+                Without::ShadeEdges,
+                Without::TextureJitter,
+                Without::SobolJitter,
+            ][i]
+        }
     }
     Ok(())
 }
@@ -96,6 +116,21 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
              valid only while it stays in its block)"
                 .into(),
         );
+    }
+    let needs = match p.without {
+        Without::Nothing => None,
+        Without::SampleKeys => (p.points != Points::Cycle).then_some("points=cycle"),
+        Without::ShadeEdges => (p.points != Points::Cycle
+            || !matches!(p.mask, MaskDims::Motion | MaskDims::Vertex))
+        .then_some("points=cycle and mask=motion or vertex"),
+        Without::TextureJitter | Without::SobolJitter => (p.mask == MaskDims::None)
+            .then_some("a mask that drives the jitter (mask other than none)"),
+    };
+    if let Some(needs) = needs {
+        return Err(format!(
+            "without={} needs {needs} (the rule it switches off exists only there)",
+            fields(p)[8].1
+        ));
     }
     if p.target == Target::Follow && p.points != Points::Cycle {
         return Err(
@@ -249,6 +284,33 @@ mod tests {
         assert_eq!(motion.mask_dims(false), still);
         assert_eq!((motion.mask_dims(true) & !still).count_ones(), 4);
         assert!(motion.shade_edges() && c.shade_edges());
+        // The ablations of the view-state rules are named after the default, and only where
+        // their rule exists.
+        for rule in [
+            "sample-keys",
+            "shade-edges",
+            "texture-jitter",
+            "sobol-jitter",
+        ] {
+            let form = format!("sort-cycle:without={rule}");
+            let a: Method = form.parse().expect("valid");
+            assert_eq!(a.name(), form);
+            assert_ne!(a, c);
+        }
+        assert!(
+            !"sort-cycle:without=shade-edges"
+                .parse::<Method>()
+                .unwrap()
+                .shade_edges()
+        );
+        for bad in [
+            "sort-cycle:mask=jitter,without=shade-edges",
+            "sort-cycle:mask=none,without=sobol-jitter",
+            "sort-retarget:without=sample-keys",
+        ] {
+            let e = bad.parse::<Method>().expect_err(bad);
+            assert!(e.contains("without=") && e.contains("needs"), "{bad}: {e}");
+        }
         let screen: Method = "sort-cycle:target=screen".parse().expect("valid");
         assert_eq!(screen.name(), "sort-cycle:target=screen");
         assert!(c.follows_target() && !screen.follows_target());

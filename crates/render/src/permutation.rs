@@ -118,6 +118,25 @@ pub enum Target {
     Follow,
 }
 
+/// One of `sort-cycle`'s rules that depend on the view state, switched off for an ablation
+/// row (the rule's own comparison in the tables): the method without it is otherwise the same.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Without {
+    /// Every rule kept.
+    Nothing,
+    /// A moving view ranks by the keys recorded a cycle ago instead of the seeds' next light
+    /// sample (`SortParams::cycle_sample_keys`).
+    SampleKeys,
+    /// A still view marks no shading edges ([`crate::Method::shade_edges`]).
+    ShadeEdges,
+    /// A moving view keeps the mask's jitter on textured pixels too
+    /// (`TRACE_FLAG_SEED_JITTER_ON_TEXTURES` off).
+    TextureJitter,
+    /// A still view walks the mask's jitter along R2 on every pixel, not along Sobol's
+    /// (0,2)-sequence on untextured ones (`TRACE_FLAG_SOBOL_JITTER` off).
+    SobolJitter,
+}
+
 /// A seed-permutation method: each field gates its own passes and shader code.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Permutation {
@@ -129,4 +148,5 @@ pub struct Permutation {
     pub points: Points,
     pub mask: MaskDims,
     pub target: Target,
+    pub without: Without,
 }

@@ -184,8 +184,7 @@ pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState) -> FrameRecipe {
         // without classes ranks one class per block exactly as zeroed classes would, and
         // skips a load per pixel.
         let blocks_only = moving && p.grouping == Grouping::StillSurfaces;
-        let sample_keys =
-            m.cycles_points() && moving && cfg.effective_sampler() == Sampler::BlockNet;
+        let sample_keys = moving && m.ranks_by_sample_keys(cfg.effective_sampler());
         let variant = SortVariant {
             classes: m.edge_aware() && !blocks_only,
             history: m.history_keys(),

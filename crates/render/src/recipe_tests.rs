@@ -85,7 +85,8 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
                 let blocks = moves && p.grouping == Grouping::StillSurfaces;
                 assert_eq!(per_block.is_some(), blocks, "{name} {view:?}");
                 assert_eq!(v.classes, m.edge_aware() && !blocks, "{name} {view:?}");
-                assert_eq!(v.sample_keys, v.cycle && moves, "{name} {view:?}");
+                let keys = v.cycle && moves && p.without != crate::Without::SampleKeys;
+                assert_eq!(v.sample_keys, keys, "{name} {view:?}");
                 assert_eq!(s.sample_keys, v.sample_keys, "{name}");
                 assert!(!(s.shade_edges && moves), "{name}: marks while moving");
                 assert_eq!(v.retarget, r.swap_seeds, "{name}");
@@ -180,4 +181,72 @@ fn mask_dimensions_have_a_mask_mode() {
         }
     }
     assert!(some > 0, "no method leaves dimensions to the mask");
+}
+
+/// Each `without=` ablation switches off its one rule in its one view state, and nothing else:
+/// the other view state's recipe is the default's.
+#[test]
+fn each_ablation_drops_one_rule_in_one_view_state() {
+    use blueshift_layout::params::{
+        TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SHADE_EDGES, TRACE_FLAG_SOBOL_JITTER,
+    };
+    let of = |m: &str, view| recipe(&config(m.parse().expect(m), None), view);
+    let still = of("sort-cycle", ViewState::Still);
+    let moving = of("sort-cycle", ViewState::Moving);
+    let sort = |r: &FrameRecipe| r.sort.expect("sort-cycle sorts");
+    // The rules are on in the default: each ablation below would compare against nothing.
+    assert!(sort(&moving).sample_keys && sort(&still).shade_edges);
+    let flags = [
+        TRACE_FLAG_SHADE_EDGES,
+        TRACE_FLAG_SOBOL_JITTER,
+        TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
+    ];
+    assert_eq!(still.trace.flags & flags[0], flags[0]);
+    assert_eq!(still.trace.flags & flags[1], flags[1]);
+    assert_eq!(moving.trace.flags & flags[2], flags[2]);
+    // (ablation, view state it changes, whether the sort or only the trace flag `bit` changes)
+    let cases = [
+        ("sample-keys", ViewState::Moving, 0),
+        ("shade-edges", ViewState::Still, TRACE_FLAG_SHADE_EDGES),
+        (
+            "texture-jitter",
+            ViewState::Moving,
+            TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
+        ),
+        ("sobol-jitter", ViewState::Still, TRACE_FLAG_SOBOL_JITTER),
+    ];
+    for (rule, view, bit) in cases {
+        let name = format!("sort-cycle:without={rule}");
+        let (same, changed) = match view {
+            ViewState::Still => (&moving, &still),
+            ViewState::Moving => (&still, &moving),
+        };
+        let other = if view == ViewState::Still {
+            ViewState::Moving
+        } else {
+            ViewState::Still
+        };
+        assert_eq!(
+            &of(&name, other),
+            same,
+            "{name}: changed the other view state"
+        );
+        let r = of(&name, view);
+        assert_ne!(&r, changed, "{name}: changed nothing");
+        let mut expected = *changed.clone().sort.as_ref().expect("sorts");
+        match rule {
+            "sample-keys" => {
+                expected.sample_keys = false;
+                expected.variant.sample_keys = false;
+            }
+            "shade-edges" => expected.shade_edges = false,
+            _ => {}
+        }
+        assert_eq!(r.sort, Some(expected), "{name}: sort plan");
+        assert_eq!(
+            r.trace.flags,
+            changed.trace.flags & !bit,
+            "{name}: trace flags"
+        );
+    }
 }
