@@ -351,7 +351,9 @@ for r in "${selected[@]}"; do
   } > "$body"
   splice "reproduce:$name" "$work" "$body"
   if [ "$name" = motion ] && ((!quick)); then
-    { echo; headline "$out/report.md"; echo; } > "$head_body"
+    # README shows the named methods; the ablation rows (`PRESET:field=value`) stay in
+    # docs/results.md.
+    { echo; headline "$out/report.md" | awk -F'|' '$2 !~ /:/'; echo; } > "$head_body"
     splice "reproduce:$name" README.md "$head_body"
     { echo; headline "$out/report.md" | picks; echo; } > "$head_body"
     splice reproduce:pick README.md "$head_body"
