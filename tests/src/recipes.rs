@@ -3,11 +3,12 @@
 //! the device with the buffers its shaders declare, the seeds stay a permutation and the
 //! estimates finite.
 use crate::Gpu;
-use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
+use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, Without, default_assets_dir};
 use blueshift_scene::Scene;
 
 /// One form in this many (and every preset's): a spread over the fields' combinations that
-/// keeps the test at a few seconds.
+/// keeps the test at a few seconds. The ablations (`without=`) only switch host-side flags
+/// of shader variants the other forms run, so the sample takes the default's four.
 const EVERY: usize = 11;
 
 #[test]
@@ -15,13 +16,28 @@ fn a_sample_of_every_form_renders_still_and_moving() {
     let gpu = Gpu::new();
     let scene = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let assets = MethodAssets::load(&default_assets_dir()).unwrap();
-    let forms = Method::all_permutations();
+    let ablates = |m: &Method| {
+        m.permutation()
+            .is_some_and(|p| p.without != Without::Nothing)
+    };
+    let forms: Vec<Method> = Method::all_permutations()
+        .into_iter()
+        .filter(|m| !ablates(m))
+        .collect();
     let presets: Vec<Method> = Method::PRESETS.iter().map(|(_, m)| *m).collect();
+    let ablations = [
+        "sample-keys",
+        "shade-edges",
+        "texture-jitter",
+        "sobol-jitter",
+    ]
+    .map(|r| format!("sort-cycle:without={r}").parse::<Method>().unwrap());
     let sample: Vec<Method> = forms
         .iter()
         .enumerate()
         .filter(|(i, m)| i % EVERY == 0 || presets.contains(m))
         .map(|(_, m)| *m)
+        .chain(ablations)
         .collect();
     assert!(sample.len() > forms.len() / EVERY, "{} forms", sample.len());
     for method in sample {
