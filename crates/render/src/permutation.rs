@@ -101,8 +101,9 @@ pub enum MaskDims {
     /// so every dimension of the camera ray and the first vertex is the mask's (what `mask-r2`
     /// draws there); deeper vertices stay the sorted seeds'. The sample keys, kept while the
     /// view moves, then rank by a light sample no pixel takes (dropping the sort instead lost
-    /// 0.014 of TAA at 8 bounces: docs/experiments.md). `sort-cycle`'s: moving, ahead of
-    /// [`MaskDims::Motion`] per frame in every motion table, and after TAA but by 0.01 at most.
+    /// 0.014 of TAA at 8 bounces: docs/experiments.md). `sort-cycle`'s: ahead of
+    /// [`MaskDims::Motion`] in every moving configuration of the motion tables, per frame and
+    /// after TAA (docs/results.md).
     Vertex,
 }
 
