@@ -3,7 +3,9 @@
 //! the device with the buffers its shaders declare, the seeds stay a permutation and the
 //! estimates finite.
 use crate::Gpu;
-use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, Without, default_assets_dir};
+use blueshift_render::{
+    Method, MethodAssets, Permutation, RenderConfig, Renderer, Without, default_assets_dir,
+};
 use blueshift_scene::Scene;
 
 /// One form in this many (and every preset's): a spread over the fields' combinations that
@@ -16,22 +18,22 @@ fn a_sample_of_every_form_renders_still_and_moving() {
     let gpu = Gpu::new();
     let scene = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let assets = MethodAssets::load(&default_assets_dir()).unwrap();
-    let ablates = |m: &Method| {
-        m.permutation()
-            .is_some_and(|p| p.without != Without::Nothing)
-    };
-    let forms: Vec<Method> = Method::all_permutations()
-        .into_iter()
-        .filter(|m| !ablates(m))
-        .collect();
+    // The default's ablations are the forms that differ from it in `without` alone.
+    let cycle = Method::SORT_CYCLE.permutation().unwrap();
+    let (ablations, forms): (Vec<Method>, Vec<Method>) =
+        Method::all_permutations().into_iter().partition(|m| {
+            m.permutation()
+                .is_some_and(|p| p.without != Without::Nothing)
+        });
+    let ablations = ablations.into_iter().filter(|m| {
+        m.permutation().is_some_and(|p| {
+            Permutation {
+                without: Without::Nothing,
+                ..p
+            } == cycle
+        })
+    });
     let presets: Vec<Method> = Method::PRESETS.iter().map(|(_, m)| *m).collect();
-    let ablations = [
-        "sample-keys",
-        "shade-edges",
-        "texture-jitter",
-        "sobol-jitter",
-    ]
-    .map(|r| format!("sort-cycle:without={r}").parse::<Method>().unwrap());
     let sample: Vec<Method> = forms
         .iter()
         .enumerate()

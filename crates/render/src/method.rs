@@ -227,6 +227,11 @@ impl Method {
         self.permutation().is_some_and(f)
     }
 
+    /// Whether a view-state rule is left on (only the `without=` ablations drop one).
+    fn keeps(self, rule: Without) -> bool {
+        !self.has(|p| p.without == rule)
+    }
+
     /// Whether sorting runs on a moving block grid against the next frame's mask (instead of
     /// retargeting).
     pub fn shifts_grid(self) -> bool {
@@ -332,10 +337,8 @@ impl Method {
     /// another pixel, and the mask's per-pixel walk converges better (docs/algorithm.md).
     pub fn shade_edges(self) -> bool {
         self.has(|p| {
-            p.points == Points::Cycle
-                && matches!(p.mask, MaskDims::Motion | MaskDims::Vertex)
-                && p.without != Without::ShadeEdges
-        })
+            p.points == Points::Cycle && matches!(p.mask, MaskDims::Motion | MaskDims::Vertex)
+        }) && self.keeps(Without::ShadeEdges)
     }
 
     /// The trace pass's flags for a jitter taken from the mask: such a method records which
@@ -351,37 +354,26 @@ impl Method {
             TRACE_FLAG_RECORD_PRIMARY, TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SHADE_EDGES,
             TRACE_FLAG_SOBOL_JITTER,
         };
-        let without = |w| self.has(|p| p.without == w);
+        let flag = |on: bool, f: u32| if on { f } else { 0 };
         if self.mask_dims(moving) & JITTER_DIMS == 0 {
             0
         } else if moving {
-            let textures = if without(Without::TextureJitter) {
-                0
-            } else {
-                TRACE_FLAG_SEED_JITTER_ON_TEXTURES
-            };
-            TRACE_FLAG_RECORD_PRIMARY | textures
+            TRACE_FLAG_RECORD_PRIMARY
+                | flag(
+                    self.keeps(Without::TextureJitter),
+                    TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
+                )
         } else {
-            let sobol = if without(Without::SobolJitter) {
-                0
-            } else {
-                TRACE_FLAG_SOBOL_JITTER
-            };
-            let edges = if self.shade_edges() {
-                TRACE_FLAG_SHADE_EDGES
-            } else {
-                0
-            };
-            TRACE_FLAG_RECORD_PRIMARY | sobol | edges
+            TRACE_FLAG_RECORD_PRIMARY
+                | flag(self.keeps(Without::SobolJitter), TRACE_FLAG_SOBOL_JITTER)
+                | flag(self.shade_edges(), TRACE_FLAG_SHADE_EDGES)
         }
     }
 
     /// Whether a moving view's point cycle ranks the seeds by their next light sample
     /// (`SortParams::cycle_sample_keys`; the sampler must be the block nets the keys index).
     pub fn ranks_by_sample_keys(self, sampler: Sampler) -> bool {
-        self.cycles_points()
-            && sampler == Sampler::BlockNet
-            && self.has(|p| p.without != Without::SampleKeys)
+        self.cycles_points() && sampler == Sampler::BlockNet && self.keeps(Without::SampleKeys)
     }
 
     /// Whether the pairs' checkerboard phase is a hash bit of the frame rather than its parity
