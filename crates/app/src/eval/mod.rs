@@ -239,19 +239,25 @@ pub fn run(gpu: &GpuOpts, args: &EvalArgs) -> Result<()> {
                         .unwrap_or_else(|_| ProgressStyle::default_bar()),
                 );
                 bar.set_message(config.label());
+                let ctx = RunContext {
+                    dev: &dev,
+                    scene: &scene,
+                    motions: &motions,
+                    taa_ref: &taa_ref,
+                    assets: &assets,
+                    args,
+                    refs: &refs,
+                    bar: &bar,
+                    out: out.path(),
+                };
+                let first = runs.len();
                 for &m in &methods {
-                    let ctx = RunContext {
-                        dev: &dev,
-                        scene: &scene,
-                        motions: &motions,
-                        taa_ref: &taa_ref,
-                        assets: &assets,
-                        args,
-                        refs: &refs,
-                        bar: &bar,
-                        out: out.path(),
-                    };
                     runs.push(run_method(&ctx, &config, m, seed_map)?);
+                }
+                bar.set_message(format!("{} timing", config.label()));
+                let times = timing::measure(&ctx, &config, &methods, seed_map)?;
+                for (run, pass_ms) in runs[first..].iter_mut().zip(times) {
+                    run.pass_ms = pass_ms;
                 }
                 bar.finish_and_clear();
                 configs.push(config);
@@ -289,13 +295,7 @@ struct RunContext<'a> {
 
 fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedMap) -> Result<Run> {
     let RunContext {
-        dev,
-        scene,
-        assets,
-        args,
-        refs,
-        bar,
-        ..
+        args, refs, bar, ..
     } = *ctx;
     let t0 = Instant::now();
     let (w, h) = (args.width, args.height);
@@ -303,45 +303,20 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
     let mut merged: Option<RunMetrics> = None;
     let (mut p1_per_sequence, mut ema_p1_per_sequence, mut taa_p1_per_sequence) =
         (Vec::new(), Vec::new(), Vec::new());
-    let mut times: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    let mut rendered = 0usize;
     let (mut last_frame, mut last_error) = (Vec::new(), None);
     let (mut flip, mut flip_clean, mut clean_fraction) = (0.0, 0.0, 0.0);
     let (mut taa_flip, mut taa_flip_clean) = (0.0, 0.0);
     for k in 0..args.sequences {
-        let seq = args.first_sequence + k;
-        let (view, base_offset) = config.camera.view_window(args.frames, w, h);
-        let cfg = RenderConfig {
-            spp: config.spp,
-            bounces: config.bounces,
-            // `--block` sizes the methods that take one; the others sort their own.
-            block: args.scene.block.filter(|_| method.fixed_block().is_none()),
-            method,
-            sampler: args.scene.sampler,
-            sequence: seq,
-            no_jitter: args.no_jitter,
-            view_size: Some(view),
-            seed_map,
-            ..RenderConfig::new(w, h)
-        };
-        let mut r = Renderer::new(dev, scene, assets, cfg)?;
-        let base = scene.camera_or_default();
+        let mut r = PathRenderer::new(ctx, config, method, args.first_sequence + k, seed_map)?;
         let mut acc = RunAccumulator::new(window)?;
         // The estimate's TAA (rgb + the estimate's fourth channel).
         let mut taa_est: Vec<f32> = Vec::new();
         for t in 0..args.frames {
             let motion = &ctx.motions[t as usize];
-            r.set_camera(config.camera.camera(&base, t));
-            let o = config.camera.view_offset(t);
-            r.set_view_offset((base_offset.0 + o.0, base_offset.1 + o.1));
             let rf = refs.frame(t, w, h);
             let reference_y = rf.luminance();
-            let stats = r.render_frame()?;
-            rendered += 1;
-            for p in stats.passes {
-                times.entry(p.name).or_default().push(p.ms);
-            }
-            let est = r.read_estimate()?;
+            r.render(t)?;
+            let est = r.renderer.read_estimate()?;
             if args.save_frames && k == 0 {
                 save_frame(ctx.out, args, config, method, t, &est, &rf.px)?;
             }
@@ -364,7 +339,7 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
             if t + 1 == args.frames {
                 last_frame = est;
                 let n = args.sequences as f64;
-                let f = flip::scores(&r.read_accum()?, &rf.px, w, h, &masks.clean);
+                let f = flip::scores(&r.renderer.read_accum()?, &rf.px, w, h, &masks.clean);
                 flip += f.all / n;
                 flip_clean += f.clean / n;
                 let (te, tr) = (
@@ -389,15 +364,6 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
             Some(prev) => metrics::average(prev, m, k as f64),
         });
     }
-    // A pass a frame skipped (a still view's G-buffer) counts 0 ms in that frame.
-    let pass_ms = times
-        .into_iter()
-        .map(|(k, mut v)| {
-            v.resize(rendered.max(v.len()), 0.0);
-            v.sort_by(f64::total_cmp);
-            (k, v[v.len() / 2])
-        })
-        .collect();
     Ok(Run {
         config: config.clone(),
         method,
@@ -410,11 +376,65 @@ fn run_method(ctx: &RunContext, config: &Config, method: Method, seed_map: SeedM
         taa_flip,
         taa_flip_clean,
         clean_fraction,
-        pass_ms,
+        // Filled in by the interleaved timing phase (`timing::measure`).
+        pass_ms: BTreeMap::new(),
         seconds: t0.elapsed().as_secs_f64(),
         last_frame,
         last_error,
     })
+}
+
+/// A renderer of one method and sequence that follows the configuration's camera path.
+struct PathRenderer {
+    renderer: Renderer,
+    camera: CameraPath,
+    base: blueshift_scene::Camera,
+    base_offset: (f32, f32),
+}
+
+impl PathRenderer {
+    fn new(
+        ctx: &RunContext,
+        config: &Config,
+        method: Method,
+        sequence: u32,
+        seed_map: SeedMap,
+    ) -> Result<Self> {
+        let (w, h) = (ctx.args.width, ctx.args.height);
+        let (view, base_offset) = config.camera.view_window(ctx.args.frames, w, h);
+        let cfg = RenderConfig {
+            spp: config.spp,
+            bounces: config.bounces,
+            // `--block` sizes the methods that take one; the others sort their own.
+            block: ctx
+                .args
+                .scene
+                .block
+                .filter(|_| method.fixed_block().is_none()),
+            method,
+            sampler: ctx.args.scene.sampler,
+            sequence,
+            no_jitter: ctx.args.no_jitter,
+            view_size: Some(view),
+            seed_map,
+            ..RenderConfig::new(w, h)
+        };
+        Ok(Self {
+            renderer: Renderer::new(ctx.dev, ctx.scene, ctx.assets, cfg)?,
+            camera: config.camera.clone(),
+            base: ctx.scene.camera_or_default(),
+            base_offset,
+        })
+    }
+
+    /// Renders frame `t` of the path (the frames in order, from 0).
+    fn render(&mut self, t: u32) -> Result<blueshift_render::FrameStats> {
+        self.renderer.set_camera(self.camera.camera(&self.base, t));
+        let o = self.camera.view_offset(t);
+        self.renderer
+            .set_view_offset((self.base_offset.0 + o.0, self.base_offset.1 + o.1));
+        Ok(self.renderer.render_frame()?)
+    }
 }
 
 /// Writes frame `t` of a run and its reference as linear EXR under `out/frames/`.

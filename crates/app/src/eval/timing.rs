@@ -5,10 +5,68 @@
 //! Why the square root: at a fixed budget a method that takes r times as long per frame
 //! renders 1/r as many samples, and Monte Carlo error falls as one over the square root of
 //! the samples, so a P1 ratio q at r times the cost is worth q * sqrt(r) at equal time.
+//!
+//! The frames are timed in a phase of their own after the quality runs: one renderer per
+//! method follows the camera path once, the methods taking turns every [`CHUNK`] frames (the
+//! first method of a turn rotating), so that a load or clock change on the machine falls on
+//! every method alike. Timed one method after another, a 128x128 frame's ratio to `white`'s
+//! moved by up to 0.09 between runs.
 use super::ratios::ratio;
-use super::{Config, Run};
+use super::{Config, PathRenderer, Run, RunContext};
 use anyhow::Result;
+use blueshift_render::{Method, SeedMap};
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
+
+/// Frames a method renders in one turn of the timing phase.
+const CHUNK: u32 = 8;
+
+/// Each method's median time per pass over the path's frames, rendered in turns
+/// ([`schedule`]); a pass a frame skipped (a still view's G-buffer) counts 0 ms there.
+pub fn measure(
+    ctx: &RunContext,
+    config: &Config,
+    methods: &[Method],
+    seed_map: SeedMap,
+) -> Result<Vec<BTreeMap<String, f64>>> {
+    let mut renderers = methods
+        .iter()
+        .map(|&m| PathRenderer::new(ctx, config, m, ctx.args.first_sequence, seed_map))
+        .collect::<Result<Vec<_>>>()?;
+    let mut times = vec![BTreeMap::<String, Vec<f64>>::new(); methods.len()];
+    for (m, frames) in schedule(methods.len(), ctx.args.frames) {
+        for t in frames {
+            for p in renderers[m].render(t)?.passes {
+                times[m].entry(p.name).or_default().push(p.ms);
+            }
+        }
+    }
+    let frames = ctx.args.frames as usize;
+    Ok(times
+        .into_iter()
+        .map(|per_pass| {
+            per_pass
+                .into_iter()
+                .map(|(name, mut v)| {
+                    v.resize(frames.max(v.len()), 0.0);
+                    v.sort_by(f64::total_cmp);
+                    (name, v[v.len() / 2])
+                })
+                .collect()
+        })
+        .collect())
+}
+
+/// The order of the timing phase: (method, its frames) turns, each method's frames in path
+/// order and every frame once; turn r starts with method r mod `methods`.
+fn schedule(methods: usize, frames: u32) -> Vec<(usize, std::ops::Range<u32>)> {
+    let mut turns = Vec::new();
+    for (r, start) in (0..frames).step_by(CHUNK as usize).enumerate() {
+        let chunk = start..(start + CHUNK).min(frames);
+        turns.extend((0..methods).map(|k| ((r + k) % methods, chunk.clone())));
+    }
+    turns
+}
 
 /// The whole frame: the sum of the medians over the run's frames of every timed pass (a
 /// pass a frame skipped counts 0 there).
@@ -51,6 +109,30 @@ pub fn table(md: &mut String, configs: &[Config], runs: &[Run]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_schedule_renders_each_methods_frames_once_in_order_and_rotates_who_goes_first() {
+        for (methods, frames) in [(1, 1), (3, 64), (17, 20), (4, 7)] {
+            let turns = schedule(methods, frames);
+            for m in 0..methods {
+                let mine: Vec<u32> = turns
+                    .iter()
+                    .filter(|(k, _)| *k == m)
+                    .flat_map(|(_, f)| f.clone())
+                    .collect();
+                assert_eq!(mine, (0..frames).collect::<Vec<_>>(), "{methods} {frames}");
+            }
+            // Between two turns of a method every other method has one turn.
+            let firsts: Vec<usize> = turns.chunks(methods).map(|c| c[0].0).collect();
+            let rotating: Vec<usize> = (0..firsts.len()).map(|r| r % methods).collect();
+            assert_eq!(firsts, rotating);
+            for c in turns.chunks(methods) {
+                let mut ms: Vec<usize> = c.iter().map(|t| t.0).collect();
+                ms.sort();
+                assert_eq!(ms, (0..methods).collect::<Vec<_>>());
+            }
+        }
+    }
 
     #[test]
     fn twice_the_time_needs_a_ratio_below_one_over_root_two_to_win() {
