@@ -8,6 +8,7 @@ use blueshift_permute::{
 };
 use blueshift_render::{Method, RenderConfig, Renderer, default_assets_dir};
 use blueshift_scene::Scene;
+use std::collections::BTreeMap;
 
 /// A volume of `t` random permutations of `n * n` ranks.
 fn volume(n: u32, t: u32, rng: &mut Lcg) -> Vec<u32> {
@@ -122,7 +123,9 @@ fn box_sort_cycle(
     let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
     let cfg = RenderConfig {
-        bounces: 1,
+        // Two bounces: in direct light a moving view of this untextured box skips the sort
+        // (`a_moving_view_in_direct_light_skips_the_sort`).
+        bounces: 2,
         method,
         ..RenderConfig::new(w, h)
     };
@@ -130,6 +133,19 @@ fn box_sort_cycle(
     let rows = Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
     let stride = r.initial_seeds().len() / rows;
     (s, assets, r, stride)
+}
+
+/// The sorted seeds of each 8x8 block of a `w x h` view (padded rows of `stride`).
+fn block_sets(seeds: &[u32], stride: usize, w: u32, h: u32) -> BTreeMap<(u32, u32), Vec<u32>> {
+    let mut sets = BTreeMap::<(u32, u32), Vec<u32>>::new();
+    for y in 0..h {
+        for x in 0..w {
+            let v = seeds[y as usize * stride + x as usize];
+            sets.entry((x / 8, y / 8)).or_default().push(v);
+        }
+    }
+    sets.values_mut().for_each(|v| v.sort_unstable());
+    sets
 }
 
 /// The renderer's sort-cycle seeds over two cycles: a permutation of the initial seeds at
@@ -140,23 +156,12 @@ fn sort_cycle_seeds_stay_in_their_blocks() {
     let (w, h) = (37u32, 21u32);
     let (_, _, mut r, stride) = box_sort_cycle(&gpu, Method::SORT_CYCLE, w, h);
     let init = r.initial_seeds().to_vec();
-    let block_sets = |seeds: &[u32]| {
-        let mut sets = std::collections::BTreeMap::<(u32, u32), Vec<u32>>::new();
-        for y in 0..h {
-            for x in 0..w {
-                let v = seeds[y as usize * stride + x as usize];
-                sets.entry((x / 8, y / 8)).or_default().push(v);
-            }
-        }
-        sets.values_mut().for_each(|v| v.sort_unstable());
-        sets
-    };
-    let want = block_sets(&init);
+    let want = block_sets(&init, stride, w, h);
     for _ in 0..2 * CYCLE_FRAMES + 1 {
         r.render_frame().unwrap();
         let seeds = r.read_seeds().unwrap();
         assert!(is_permutation_of(&seeds, &init));
-        assert_eq!(block_sets(&seeds), want);
+        assert_eq!(block_sets(&seeds, stride, w, h), want);
     }
     assert_ne!(r.read_seeds().unwrap(), init, "seeds never moved");
 }
@@ -218,7 +223,7 @@ fn still_view_reuses_gbuffer_and_classes() {
     let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
     let renderer = |method: Method| {
         let cfg = RenderConfig {
-            bounces: 1,
+            bounces: 2, // (in direct light a moving frame here would skip the sort)
             method,
             ..RenderConfig::new(29, 19)
         };
@@ -415,5 +420,60 @@ fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
     assert!(
         !same(motion, "sort-cycle", true, true),
         "moving: the light sample is not the mask's"
+    );
+}
+
+/// In direct light on an untextured scene the trace of a moving `sort-cycle` frame reads no
+/// seed (the mask draws the jitter and the first vertex), so the frame runs no sort and the
+/// seeds stay where they were; the first still frame sorts again, and every block keeps its
+/// own seeds throughout.
+#[test]
+fn a_moving_view_in_direct_light_skips_the_sort() {
+    let gpu = Gpu::new();
+    let (w, h) = (37u32, 21u32);
+    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
+    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
+    let cfg = RenderConfig {
+        bounces: 1,
+        method: Method::SORT_CYCLE,
+        ..RenderConfig::new(w, h)
+    };
+    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
+    let rows = Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
+    let stride = r.initial_seeds().len() / rows;
+    let init = r.initial_seeds().to_vec();
+    let want = block_sets(&init, stride, w, h);
+    let sorted = |r: &mut Renderer| {
+        let stats = r.render_frame().unwrap();
+        stats.passes.iter().any(|p| p.name == "sort_seeds")
+    };
+    for _ in 0..CYCLE_FRAMES + 1 {
+        assert!(sorted(&mut r), "a still frame skipped the sort");
+    }
+    let before = r.read_seeds().unwrap();
+    assert_ne!(before, init, "the still frames moved no seed");
+    let mut cam = s.camera_or_default();
+    for frame in 0..2 * CYCLE_FRAMES {
+        cam.position.x += 0.01;
+        r.set_camera(cam);
+        assert!(!sorted(&mut r), "moving frame {frame} sorted");
+        assert_eq!(r.read_seeds().unwrap(), before, "moving frame {frame}");
+    }
+    for frame in 0..2 * CYCLE_FRAMES {
+        assert!(
+            sorted(&mut r),
+            "still frame {frame} after the motion skipped the sort"
+        );
+        let seeds = r.read_seeds().unwrap();
+        assert_eq!(
+            block_sets(&seeds, stride, w, h),
+            want,
+            "still frame {frame}"
+        );
+    }
+    assert_ne!(
+        r.read_seeds().unwrap(),
+        before,
+        "the still view sorted nothing"
     );
 }

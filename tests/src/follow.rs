@@ -21,7 +21,8 @@ fn renderer(
     sequence: u32,
 ) -> Renderer {
     let cfg = RenderConfig {
-        bounces: 1,
+        // Two bounces: in direct light a moving view of the untextured box skips the sort.
+        bounces: 2,
         method: method.parse::<Method>().unwrap(),
         sequence,
         ..RenderConfig::new(w, h)

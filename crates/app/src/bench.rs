@@ -134,8 +134,7 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     let permute: f64 = medians
         .iter()
         .filter(|(n, ..)| blueshift_render::PERMUTE_PASSES.contains(&n.as_str()))
-        .map(|p| p.1)
-        .sum();
+        .fold(0.0, |sum, p| sum + p.1); // (an empty f64 sum is -0.0)
     writeln!(
         out,
         "  permutation passes {permute:.3} ms {:.2} ns/px: {:.2}% of trace",

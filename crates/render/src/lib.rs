@@ -183,7 +183,7 @@ impl Renderer {
         ];
         Ok(Self {
             dev: dev.clone(),
-            recipes: Recipes::new(&cfg),
+            recipes: Recipes::new(&cfg, scene_images.textured),
             screen,
             passes: Pipelines {
                 trace: TracePass::new(dev),
@@ -304,7 +304,7 @@ impl Renderer {
             ..self.cfg.clone()
         };
         self.initial_seeds = seeds_of(&cfg, &self.screen, &self.assets)?;
-        self.recipes = Recipes::new(&cfg);
+        self.recipes = Recipes::new(&cfg, self.res.images.textured);
         self.cfg = cfg;
         self.reset()
     }
@@ -325,7 +325,7 @@ impl Renderer {
             self.res.masks.keys = Buffer::upload(&self.dev, "assets.hbo19_keys", &words)?;
             self.res.masks.keys_spp = keys_spp;
         }
-        self.recipes = Recipes::new(&cfg);
+        self.recipes = Recipes::new(&cfg, self.res.images.textured);
         self.cfg = cfg;
         self.accumulated = 0;
         Ok(())

@@ -228,7 +228,7 @@ impl Method {
     }
 
     /// Whether a view-state rule is left on (only the `without=` ablations drop one).
-    fn keeps(self, rule: Without) -> bool {
+    pub(crate) fn keeps(self, rule: Without) -> bool {
         !self.has(|p| p.without == rule)
     }
 
@@ -368,6 +368,19 @@ impl Method {
                 | flag(self.keeps(Without::SobolJitter), TRACE_FLAG_SOBOL_JITTER)
                 | flag(self.shade_edges(), TRACE_FLAG_SHADE_EDGES)
         }
+    }
+
+    /// Whether the trace reads the seeds of a view that is `moving` or not, at `bounces`, in a
+    /// scene with textures or not. Not where the mask drives every dimension a path draws
+    /// (direct light with the first vertex from the mask, `mask=vertex` moving) and no pixel
+    /// takes the seeds' jitter (no textures): a sort there would rank seeds nobody uses, so
+    /// the frame skips it and costs what the mask's frame costs.
+    pub fn reads_seeds(self, moving: bool, bounces: u32, textured: bool) -> bool {
+        use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_SEED_JITTER_ON_TEXTURES};
+        let whole_vertex = self.mask_dims(moving) == (1 << MASK_DIMS) - 1;
+        let seed_jitter =
+            textured && self.jitter_flags(moving) & TRACE_FLAG_SEED_JITTER_ON_TEXTURES != 0;
+        !whole_vertex || bounces > 1 || seed_jitter
     }
 
     /// Whether a moving view's point cycle ranks the seeds by their next light sample

@@ -147,10 +147,12 @@ pub(crate) struct Recipes {
 }
 
 impl Recipes {
-    pub fn new(cfg: &RenderConfig) -> Self {
+    /// The recipes of `cfg` in a scene with textures or not (`textured`: whether any pixel
+    /// can take the seeds' jitter, [`Method::reads_seeds`]).
+    pub fn new(cfg: &RenderConfig, textured: bool) -> Self {
         Self {
-            still: recipe(cfg, ViewState::Still),
-            moving: recipe(cfg, ViewState::Moving),
+            still: recipe(cfg, ViewState::Still, textured),
+            moving: recipe(cfg, ViewState::Moving, textured),
         }
     }
 
@@ -168,8 +170,9 @@ impl Recipes {
     }
 }
 
-/// The frame of configuration `cfg` for a view in state `view`.
-pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState) -> FrameRecipe {
+/// The frame of configuration `cfg` for a view in state `view`, in a scene with textures or
+/// not (`textured`).
+pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> FrameRecipe {
     let m = cfg.method;
     let moving = view == ViewState::Moving;
     let trace = trace_plan(cfg, moving);
@@ -178,7 +181,11 @@ pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState) -> FrameRecipe {
         passes.push(Pass::FollowAnchors);
     }
     passes.push(Pass::Trace);
-    let sort = m.permutation().map(|p| {
+    // No sort where the trace reads no seed. The point cycle's history then keeps the slots
+    // of the last sorted frames: each holds the same seeds per block, so the first still
+    // frame's sort permutes them as ever, ranked by older keys for one cycle.
+    let reads_seeds = m.reads_seeds(moving, cfg.bounces, textured);
+    let sort = m.permutation().filter(|_| reads_seeds).map(|p| {
         let block = cfg.effective_block();
         // Under `grouping=still-surfaces` a moving view ranks whole blocks: the variant
         // without classes ranks one class per block exactly as zeroed classes would, and

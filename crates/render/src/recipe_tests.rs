@@ -36,7 +36,7 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
     for (name, m) in every_method() {
         for block in [None, Some(2), Some(8)] {
             let cfg = config(m, block);
-            let [still, moving] = VIEWS.map(|v| recipe(&cfg, v));
+            let [still, moving] = VIEWS.map(|v| recipe(&cfg, v, true));
             let same = |r: &FrameRecipe| {
                 (
                     r.reproject,
@@ -139,7 +139,7 @@ fn anchored_methods_have_a_mask_mode() {
     assert!(!anchored.is_empty());
     for (name, m) in anchored {
         for view in VIEWS {
-            let r = recipe(&config(m, None), view);
+            let r = recipe(&config(m, None), view, true);
             assert_ne!(r.trace.mask_mode, MASK_MODE_NONE, "{name}");
             assert_ne!(r.trace.flags & TRACE_FLAG_MASK_ANCHORED, 0, "{name}");
         }
@@ -155,7 +155,7 @@ fn mask_dimensions_have_a_mask_mode() {
     for (name, m) in every_method() {
         for view in VIEWS {
             let moving = view == ViewState::Moving;
-            let r = recipe(&config(m, None), view);
+            let r = recipe(&config(m, None), view, true);
             let dims = m.mask_dims(moving);
             assert_eq!(
                 r.trace.flags >> TRACE_FLAG_MASK_DIMS_SHIFT & dims,
@@ -190,7 +190,7 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
     use blueshift_layout::params::{
         TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SHADE_EDGES, TRACE_FLAG_SOBOL_JITTER,
     };
-    let of = |m: &str, view| recipe(&config(m.parse().expect(m), None), view);
+    let of = |m: &str, view| recipe(&config(m.parse().expect(m), None), view, true);
     let still = of("sort-cycle", ViewState::Still);
     let moving = of("sort-cycle", ViewState::Moving);
     let sort = |r: &FrameRecipe| r.sort.expect("sort-cycle sorts");
@@ -243,4 +243,49 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
             "{name}: trace flags"
         );
     }
+}
+
+/// A frame sorts unless its trace reads no seed: only a moving view of a form that takes the
+/// first vertex from the mask, in direct light, in a scene without textures skips the sort,
+/// and it keeps the trace plan of the frame that sorts.
+#[test]
+fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
+    let mut skipped = 0;
+    for (name, m) in every_method() {
+        for bounces in [0, 1, 2, 8] {
+            for textured in [false, true] {
+                for view in VIEWS {
+                    let cfg = RenderConfig {
+                        bounces,
+                        ..config(m, None)
+                    };
+                    let r = recipe(&cfg, view, textured);
+                    let moving = view == ViewState::Moving;
+                    let vertex = m
+                        .permutation()
+                        .is_some_and(|p| p.mask == crate::MaskDims::Vertex);
+                    let seed_jitter = textured && m.keeps(crate::Without::TextureJitter);
+                    let skips = m.sorts() && moving && vertex && bounces <= 1 && !seed_jitter;
+                    assert_eq!(r.sort.is_none(), !m.sorts() || skips, "{name} b{bounces}");
+                    if skips {
+                        skipped += 1;
+                        let passes = [
+                            Pass::ClearStatus,
+                            Pass::Trace,
+                            Pass::Accumulate,
+                            Pass::Tonemap,
+                            Pass::Readback,
+                        ];
+                        assert_eq!(r.passes, passes, "{name}: only the trace and the image");
+                        let sorting = recipe(&RenderConfig { bounces: 2, ..cfg }, view, textured);
+                        assert_eq!(r.trace, sorting.trace, "{name}: the same trace");
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        skipped > 0,
+        "the default skips it in direct light, moving, untextured"
+    );
 }
