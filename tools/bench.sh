@@ -29,12 +29,15 @@ if [ -z "$bin" ]; then
   bin="$CARGO_TARGET_DIR/release/blueshift"
 fi
 
-# method | camera path | width x height | bounces
+# method | camera path | width x height | bounces [| scene, default the Cornell box]. In direct
+# light a moving `sort-cycle` sorts only where textures take the seeds' jitter: the textured
+# rows show what it costs there.
 CONFIGS=(
   "sort-retarget|static|1920x1080|1"
   "sort-cycle|static|1920x1080|1"
   "sort-cycle|strafe:2.5|1920x1080|1"
-  "sort-cycle:grouping=surfaces|strafe:2.5|1920x1080|1"
+  "sort-cycle|strafe:2.5|1920x1080|1|textured"
+  "sort-cycle:grouping=surfaces|strafe:2.5|1920x1080|1|textured"
   "mask-rot-follow|strafe:2.5|1920x1080|1"
   "sort-grid-adaptive|strafe:2.5|1920x1080|1"
   "sort-retarget|static|256x256|8"
@@ -57,20 +60,22 @@ tmpfiles+=("$table")
 outs=()
 for ((r = 0; r < ROUNDS; r++)); do
   for i in "${!CONFIGS[@]}"; do
-    IFS='|' read -r method camera size bounces <<< "${CONFIGS[$i]}"
+    IFS='|' read -r method camera size bounces scene <<< "${CONFIGS[$i]}"
     out="$(mktemp)"
     tmpfiles+=("$out")
     outs[r * ${#CONFIGS[@]} + i]="$out"
-    echo "== round $((r + 1))/$ROUNDS: bench --method $method --camera-path $camera ${size} --bounces $bounces" >&2
+    echo "== round $((r + 1))/$ROUNDS: bench --method $method --camera-path $camera ${size} --bounces $bounces ${scene:-cornell-box}" >&2
     "$bin" bench --method "$method" --camera-path "$camera" --width "${size%x*}" \
-      --height "${size#*x}" --bounces "$bounces" --spp 1 --warmup 17 --frames 8 > "$out"
+      --height "${size#*x}" --bounces "$bounces" --spp 1 --warmup 17 --frames 8 \
+      --scene "${scene:-cornell-box}" > "$out"
     cat "$out" >&2
   done
 done
 # "  permutation passes MS ms NS ns/px: SHARE% of trace" (0 without permutation passes)
 share() { awk '$1 == "permutation" { s = $7 + 0 } END { print s + 0 }' "$1"; }
 for i in "${!CONFIGS[@]}"; do
-  IFS='|' read -r method camera size bounces <<< "${CONFIGS[$i]}"
+  IFS='|' read -r method camera size bounces scene <<< "${CONFIGS[$i]}"
+  [ -n "$scene" ] && camera="$camera, $scene"
   out="$(for ((r = 0; r < ROUNDS; r++)); do
     o="${outs[r * ${#CONFIGS[@]} + i]}"
     echo "$(share "$o") $o"
