@@ -111,21 +111,19 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
     }
 }
 
-/// `method` (a `sort-cycle` form) on the Cornell box in direct light at `w x h`: the scene,
-/// the method assets (the tests read the STBN volume), the renderer and its seed buffer's row
+/// `method` (a `sort-cycle` form) on the Cornell box at `bounces` and `w x h`: the scene, the
+/// method assets (the tests read the STBN volume), the renderer and its seed buffer's row
 /// stride.
 fn box_sort_cycle(
     gpu: &Gpu,
     method: Method,
-    w: u32,
-    h: u32,
+    bounces: u32,
+    (w, h): (u32, u32),
 ) -> (Scene, blueshift_render::MethodAssets, Renderer, usize) {
     let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
     let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
     let cfg = RenderConfig {
-        // Two bounces: in direct light a moving view of this untextured box skips the sort
-        // (`a_moving_view_in_direct_light_skips_the_sort`).
-        bounces: 2,
+        bounces,
         method,
         ..RenderConfig::new(w, h)
     };
@@ -154,7 +152,7 @@ fn block_sets(seeds: &[u32], stride: usize, w: u32, h: u32) -> BTreeMap<(u32, u3
 fn sort_cycle_seeds_stay_in_their_blocks() {
     let gpu = Gpu::new();
     let (w, h) = (37u32, 21u32);
-    let (_, _, mut r, stride) = box_sort_cycle(&gpu, Method::SORT_CYCLE, w, h);
+    let (_, _, mut r, stride) = box_sort_cycle(&gpu, Method::SORT_CYCLE, 2, (w, h));
     let init = r.initial_seeds().to_vec();
     let want = block_sets(&init, stride, w, h);
     for _ in 0..2 * CYCLE_FRAMES + 1 {
@@ -177,7 +175,9 @@ fn a_moving_view_ranks_seeds_by_their_next_light_sample() {
     let gpu = Gpu::new();
     let (w, h) = (40u32, 24u32);
     let screen = "sort-cycle:target=screen".parse().unwrap();
-    let (s, assets, mut r, stride) = box_sort_cycle(&gpu, screen, w, h);
+    // Two bounces: in direct light a moving view of this untextured box skips the sort
+    // (`a_moving_view_in_direct_light_skips_the_sort`).
+    let (s, assets, mut r, stride) = box_sort_cycle(&gpu, screen, 2, (w, h));
     let samples = blueshift_sampling::Samples::default();
     let (n, frames) = (assets.stbn_n, assets.stbn_frames);
     // Pairs of pixels of one block whose seeds' next light samples are out of the mask's
@@ -431,16 +431,7 @@ fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
 fn a_moving_view_in_direct_light_skips_the_sort() {
     let gpu = Gpu::new();
     let (w, h) = (37u32, 21u32);
-    let s = Scene::load(default_assets_dir().join("scenes/cornell-box.gltf")).unwrap();
-    let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
-    let cfg = RenderConfig {
-        bounces: 1,
-        method: Method::SORT_CYCLE,
-        ..RenderConfig::new(w, h)
-    };
-    let mut r = Renderer::new(gpu.dev(), &s, &assets, cfg).unwrap();
-    let rows = Screen::new(w, h, assets.n).unwrap().padded_height() as usize;
-    let stride = r.initial_seeds().len() / rows;
+    let (s, _, mut r, stride) = box_sort_cycle(&gpu, Method::SORT_CYCLE, 1, (w, h));
     let init = r.initial_seeds().to_vec();
     let want = block_sets(&init, stride, w, h);
     let sorted = |r: &mut Renderer| {

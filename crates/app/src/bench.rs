@@ -106,11 +106,9 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     // A pass skipped in some frames (the G-buffer of a still view) counts 0 ms there.
     let medians: Vec<(String, f64, usize)> = per_pass
         .into_iter()
-        .map(|(name, mut v)| {
+        .map(|(name, v)| {
             let ran = v.len();
-            v.resize(a.frames as usize, 0.0);
-            v.sort_by(f64::total_cmp);
-            (name, v[v.len() / 2], ran)
+            (name, pass_median(v, a.frames as usize), ran)
         })
         .collect();
     let pixels = cfg.width as f64 * cfg.height as f64;
@@ -205,6 +203,14 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
 }
 
 /// The loop table of `--loop-stats` for `samples` samples in all.
+/// The median of a pass's times over `frames` frames, of which it ran in `times.len()`: a
+/// frame that skipped the pass (a still view's G-buffer) counts 0 ms.
+pub(crate) fn pass_median(mut times: Vec<f64>, frames: usize) -> f64 {
+    times.resize(frames.max(times.len()), 0.0);
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
 fn loop_table(out: &mut String, loops: &LoopStats, samples: f64, width: u32) -> Result<()> {
     let total = loops.total();
     let pct = |u: Option<f64>| u.map_or("-".to_string(), |u| format!("{:.1}%", 100.0 * u));

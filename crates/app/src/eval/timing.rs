@@ -22,7 +22,7 @@ use std::fmt::Write as _;
 const CHUNK: u32 = 8;
 
 /// Each method's median time per pass over the path's frames, rendered in turns
-/// ([`schedule`]); a pass a frame skipped (a still view's G-buffer) counts 0 ms there.
+/// ([`schedule`]; medians by `bench::pass_median`, a skipped pass counting 0 ms).
 pub fn measure(
     ctx: &RunContext,
     config: &Config,
@@ -47,11 +47,7 @@ pub fn measure(
         .map(|per_pass| {
             per_pass
                 .into_iter()
-                .map(|(name, mut v)| {
-                    v.resize(frames.max(v.len()), 0.0);
-                    v.sort_by(f64::total_cmp);
-                    (name, v[v.len() / 2])
-                })
+                .map(|(name, v)| (name, crate::bench::pass_median(v, frames)))
                 .collect()
         })
         .collect())
