@@ -63,6 +63,8 @@ mod shade;
 #[cfg(test)]
 mod sort_variants;
 #[cfg(test)]
+mod still_volume;
+#[cfg(test)]
 mod taa;
 #[cfg(test)]
 mod trace;

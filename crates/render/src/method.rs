@@ -380,7 +380,24 @@ impl Method {
         let whole_vertex = self.mask_dims(moving) == (1 << MASK_DIMS) - 1;
         let seed_jitter =
             textured && self.jitter_flags(moving) & TRACE_FLAG_SEED_JITTER_ON_TEXTURES != 0;
-        !whole_vertex || bounces > 1 || seed_jitter
+        (!whole_vertex || bounces > 1 || seed_jitter)
+            && !self.volume_vertex(moving, bounces, textured)
+    }
+
+    /// Whether the frame of a view that is `moving` or not, at `bounces`, in a scene with
+    /// textures or not, takes the camera jitter and the whole first vertex from the
+    /// spatio-temporal volume (`MASK_MODE_SPATIOTEMPORAL`, the slices the point cycle sorts
+    /// against): a still `mask=vertex` point cycle in direct light without textures. A path
+    /// draws nothing else there, and the volume is blue in each frame and along each pixel's
+    /// frames: it beats the sorted seeds on both axes (docs/results.md), so the trace reads no
+    /// seed and the frame skips the sort. With textures the seeds' sorted light sample and the
+    /// mask's Sobol walk accumulate better than the volume.
+    pub fn volume_vertex(self, moving: bool, bounces: u32, textured: bool) -> bool {
+        !moving
+            && bounces <= 1
+            && !textured
+            && self.has(|p| p.points == Points::Cycle && p.mask == MaskDims::Vertex)
+            && self.keeps(Without::StillVolume)
     }
 
     /// Whether a moving view's point cycle ranks the seeds by their next light sample

@@ -23,6 +23,7 @@ const FIELDS: [(&str, &[&str]); 9] = [
             "shade-edges",
             "texture-jitter",
             "sobol-jitter",
+            "still-volume",
         ],
     ),
 ];
@@ -86,6 +87,7 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
                 Without::ShadeEdges,
                 Without::TextureJitter,
                 Without::SobolJitter,
+                Without::StillVolume,
             ][i]
         }
     }
@@ -125,6 +127,8 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
         .then_some("points=cycle and mask=motion or vertex"),
         Without::TextureJitter | Without::SobolJitter => (p.mask == MaskDims::None)
             .then_some("a mask that drives the jitter (mask other than none)"),
+        Without::StillVolume => (p.points != Points::Cycle || p.mask != MaskDims::Vertex)
+            .then_some("points=cycle and mask=vertex"),
     };
     if let Some(needs) = needs {
         return Err(format!(

@@ -136,6 +136,10 @@ pub enum Without {
     /// A still view walks the mask's jitter along R2 on every pixel, not along Sobol's
     /// (0,2)-sequence on untextured ones (`TRACE_FLAG_SOBOL_JITTER` off).
     SobolJitter,
+    /// A still view in direct light on a scene without textures keeps the sorted seeds (the
+    /// rules above) instead of taking the jitter and the first vertex from the
+    /// spatio-temporal volume ([`crate::Method::volume_vertex`]).
+    StillVolume,
 }
 
 /// A seed-permutation method: each field gates its own passes and shader code.

@@ -175,7 +175,7 @@ impl Recipes {
 pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> FrameRecipe {
     let m = cfg.method;
     let moving = view == ViewState::Moving;
-    let trace = trace_plan(cfg, moving);
+    let trace = trace_plan(cfg, moving, textured);
     let mut passes = vec![Pass::ClearStatus];
     if m.anchors_mask() {
         passes.push(Pass::FollowAnchors);
@@ -254,10 +254,21 @@ pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> Fra
     }
 }
 
-/// The trace pass's flags, mask mode and mask for configuration `cfg` and a view that is
-/// `moving` or not.
-fn trace_plan(cfg: &RenderConfig, moving: bool) -> TracePlan {
+/// The trace pass's flags, mask mode and mask for configuration `cfg`, a view that is
+/// `moving` or not and a scene with textures or not.
+fn trace_plan(cfg: &RenderConfig, moving: bool, textured: bool) -> TracePlan {
     let m = cfg.method;
+    if m.volume_vertex(moving, cfg.bounces, textured) {
+        use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_RECORD_PRIMARY};
+        return TracePlan {
+            flags: method_flags(cfg)
+                | ((1 << MASK_DIMS) - 1) << TRACE_FLAG_MASK_DIMS_SHIFT
+                | TRACE_FLAG_RECORD_PRIMARY,
+            mask_mode: MASK_MODE_SPATIOTEMPORAL,
+            mask: MaskSource::Stbn,
+            cycle_phase: m.cycles_points(),
+        };
+    }
     let dims = m.mask_dims(moving);
     let mask_mode = if dims != 0 {
         // Shifted while moving, rotated while still: see `MaskDims::Jitter`.

@@ -1,5 +1,5 @@
 use super::*;
-use crate::method::{Grouping, Permutation};
+use crate::method::{Grouping, Permutation, Points};
 use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_RECORD_PRIMARY};
 
 const VIEWS: [ViewState; 2] = [ViewState::Still, ViewState::Moving];
@@ -245,9 +245,10 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
     }
 }
 
-/// A frame sorts unless its trace reads no seed: only a moving view of a form that takes the
-/// first vertex from the mask, in direct light, in a scene without textures skips the sort,
-/// and it keeps the trace plan of the frame that sorts.
+/// A frame sorts unless its trace reads no seed: in direct light, a moving view of a form that
+/// takes the first vertex from the mask where no pixel takes the seeds' jitter (it keeps the
+/// trace plan of the frame that sorts), and a still view of the point cycle with that mask
+/// in a scene without textures (it takes the volume instead, tested below).
 #[test]
 fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
     let mut skipped = 0;
@@ -265,7 +266,16 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
                         .permutation()
                         .is_some_and(|p| p.mask == crate::MaskDims::Vertex);
                     let seed_jitter = textured && m.keeps(crate::Without::TextureJitter);
-                    let skips = m.sorts() && moving && vertex && bounces <= 1 && !seed_jitter;
+                    let skips_moving =
+                        m.sorts() && moving && vertex && bounces <= 1 && !seed_jitter;
+                    let cycle = m.permutation().is_some_and(|p| p.points == Points::Cycle);
+                    let skips_still = cycle
+                        && vertex
+                        && !moving
+                        && bounces <= 1
+                        && !textured
+                        && m.keeps(crate::Without::StillVolume);
+                    let skips = skips_moving || skips_still;
                     assert_eq!(r.sort.is_none(), !m.sorts() || skips, "{name} b{bounces}");
                     if skips {
                         skipped += 1;
@@ -278,7 +288,7 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
                         ];
                         assert_eq!(r.passes, passes, "{name}: only the trace and the image");
                         let sorting = recipe(&RenderConfig { bounces: 2, ..cfg }, view, textured);
-                        assert_eq!(r.trace, sorting.trace, "{name}: the same trace");
+                        assert_eq!(r.trace == sorting.trace, skips_moving, "{name}: the trace");
                     }
                 }
             }
@@ -288,4 +298,71 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
         skipped > 0,
         "the default skips it in direct light, moving, untextured"
     );
+}
+
+/// A still direct-light frame of the default in a scene without textures is `stbn`'s frame:
+/// the volume's mode and buffer, every mask dimension, no seed-side rule (Sobol walk, shading
+/// edges) and no sort; the frame time is the mask's. Its ablation keeps the sorted seeds,
+/// exactly the recipe the default runs where textures are (which only the volume rule tells
+/// apart from a scene without them, while still), and changes no moving frame.
+#[test]
+fn a_still_direct_frame_without_textures_takes_the_volume() {
+    use blueshift_layout::params::{
+        MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_SHADE_EDGES, TRACE_FLAG_SOBOL_JITTER,
+    };
+    let of = |m: &str, view, bounces, textured| {
+        let method = Method::parse_comparison(m).expect(m);
+        let cfg = RenderConfig {
+            bounces,
+            ..config(method, None)
+        };
+        recipe(&cfg, view, textured)
+    };
+    let stbn = of("stbn", ViewState::Still, 1, false);
+    for bounces in [0, 1] {
+        let r = of("sort-cycle", ViewState::Still, bounces, false);
+        assert_eq!(
+            (r.trace.mask_mode, r.trace.mask),
+            (MASK_MODE_SPATIOTEMPORAL, MaskSource::Stbn)
+        );
+        assert_eq!(
+            (r.trace.mask_mode, r.trace.mask),
+            (stbn.trace.mask_mode, stbn.trace.mask)
+        );
+        let dims = r.trace.flags >> TRACE_FLAG_MASK_DIMS_SHIFT & ((1 << MASK_DIMS) - 1);
+        assert_eq!(
+            dims,
+            (1 << MASK_DIMS) - 1,
+            "b{bounces}: every mask dimension"
+        );
+        assert_eq!(
+            r.trace.flags & (TRACE_FLAG_SOBOL_JITTER | TRACE_FLAG_SHADE_EDGES),
+            0
+        );
+        assert_eq!(r.sort, None, "b{bounces}");
+        let ablation = "sort-cycle:without=still-volume";
+        assert_eq!(
+            of(ablation, ViewState::Still, bounces, false),
+            of("sort-cycle", ViewState::Still, bounces, true),
+            "b{bounces}: the ablation sorts as with textures"
+        );
+        assert_eq!(
+            of(ablation, ViewState::Moving, bounces, false),
+            of("sort-cycle", ViewState::Moving, bounces, false),
+            "b{bounces}: the ablation changed a moving frame"
+        );
+    }
+    // Not at depth, not with textures, not moving: there the seeds are read.
+    for (view, bounces, textured) in [
+        (ViewState::Still, 2, false),
+        (ViewState::Still, 1, true),
+        (ViewState::Moving, 1, false),
+    ] {
+        let r = of("sort-cycle", view, bounces, textured);
+        assert_ne!(
+            r.trace.mask,
+            MaskSource::Stbn,
+            "{view:?} b{bounces} {textured}"
+        );
+    }
 }
