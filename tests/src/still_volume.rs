@@ -1,7 +1,8 @@
 //! A still `sort-cycle` frame in direct light on a scene without textures takes the camera
 //! jitter and the first vertex from the spatio-temporal volume (`Method::volume_vertex`): it
 //! renders `stbn`'s frames bit for bit (an independent recipe of the same volume), sorts
-//! nothing and leaves the seeds alone. At depth and with textures the default sorts.
+//! nothing and leaves the seeds alone; moving, it renders `mask-r2`'s. At depth and with
+//! textures the default sorts.
 use crate::Gpu;
 use blueshift_permute::CYCLE_FRAMES;
 use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
@@ -34,11 +35,14 @@ fn a_still_direct_frame_renders_stbn_and_sorts_nothing() {
     for spp in [1, 3] {
         let new = |m| Renderer::new(gpu.dev(), &cornell, &assets, cfg(m, spp, 1)).unwrap();
         let (mut default, mut stbn) = (new(Method::SORT_CYCLE), new(Method::Stbn));
+        // Frame for frame beside the default: its mask offsets depend on the frame.
+        let mut mask_r2 = new(Method::MaskR2);
         let init = default.initial_seeds().to_vec();
         // Past a point cycle, so a phase-keyed slice would repeat where stbn's does not.
         for frame in 0..CYCLE_FRAMES + 3 {
             assert!(!sorted(&mut default), "spp {spp}: frame {frame} sorted");
             stbn.render_frame().unwrap();
+            mask_r2.render_frame().unwrap();
             assert_eq!(
                 bits(default.read_estimate().unwrap()),
                 bits(stbn.read_estimate().unwrap()),
@@ -46,6 +50,23 @@ fn a_still_direct_frame_renders_stbn_and_sorts_nothing() {
             );
         }
         assert_eq!(default.read_seeds().unwrap(), init, "spp {spp}");
+        // Moving, the 2D mask's frames (`mask=vertex`, no sort either).
+        let mut cam = cornell.camera_or_default();
+        for frame in 0..4 {
+            cam.position.x += 0.01;
+            default.set_camera(cam);
+            mask_r2.set_camera(cam);
+            assert!(
+                !sorted(&mut default),
+                "spp {spp}: moving frame {frame} sorted"
+            );
+            mask_r2.render_frame().unwrap();
+            assert_eq!(
+                bits(default.read_estimate().unwrap()),
+                bits(mask_r2.read_estimate().unwrap()),
+                "spp {spp}: moving frame {frame} is not mask-r2's"
+            );
+        }
     }
     // Where the seeds are read, the default sorts: at depth, and in direct light with
     // textures (the volume's jitter accumulates worse on them) or without the rule.

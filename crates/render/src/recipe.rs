@@ -74,6 +74,9 @@ pub(crate) struct TracePlan {
     pub mask: MaskSource,
     /// The sampler's frame is the phase of the point cycle (the index repeats).
     pub cycle_phase: bool,
+    /// The trace reads no seed ([`Method::reads_seeds`]): it runs the `white` sampler, the
+    /// cheapest, whose bits the mask replaces as it would the method's own.
+    pub no_seeds: bool,
 }
 
 /// One pass of the frame's main submission.
@@ -175,16 +178,19 @@ impl Recipes {
 pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> FrameRecipe {
     let m = cfg.method;
     let moving = view == ViewState::Moving;
-    let trace = trace_plan(cfg, moving, textured);
+    // No sort where the trace reads no seed. The point cycle's history then keeps the slots
+    // of the last sorted frames: each holds the same seeds per block, so the first still
+    // frame's sort permutes them as ever, ranked by older keys for one cycle.
+    let reads_seeds = m.reads_seeds(moving, cfg.bounces, textured);
+    let trace = TracePlan {
+        no_seeds: !reads_seeds,
+        ..trace_plan(cfg, moving, textured)
+    };
     let mut passes = vec![Pass::ClearStatus];
     if m.anchors_mask() {
         passes.push(Pass::FollowAnchors);
     }
     passes.push(Pass::Trace);
-    // No sort where the trace reads no seed. The point cycle's history then keeps the slots
-    // of the last sorted frames: each holds the same seeds per block, so the first still
-    // frame's sort permutes them as ever, ranked by older keys for one cycle.
-    let reads_seeds = m.reads_seeds(moving, cfg.bounces, textured);
     let sort = m.permutation().filter(|_| reads_seeds).map(|p| {
         let block = cfg.effective_block();
         // Under `grouping=still-surfaces` a moving view ranks whole blocks: the variant
@@ -267,6 +273,7 @@ fn trace_plan(cfg: &RenderConfig, moving: bool, textured: bool) -> TracePlan {
             mask_mode: MASK_MODE_SPATIOTEMPORAL,
             mask: MaskSource::Stbn,
             cycle_phase: m.cycles_points(),
+            no_seeds: true,
         };
     }
     let dims = m.mask_dims(moving);
@@ -295,6 +302,7 @@ fn trace_plan(cfg: &RenderConfig, moving: bool, textured: bool) -> TracePlan {
         mask_mode,
         mask,
         cycle_phase: m.cycles_points(),
+        no_seeds: false,
     }
 }
 

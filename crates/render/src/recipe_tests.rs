@@ -247,8 +247,9 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
 
 /// A frame sorts unless its trace reads no seed: in direct light, a moving view of a form that
 /// takes the first vertex from the mask where no pixel takes the seeds' jitter (it keeps the
-/// trace plan of the frame that sorts), and a still view of the point cycle with that mask
-/// in a scene without textures (it takes the volume instead, tested below).
+/// trace plan of the frame that sorts but for the sampler), and a still view of the point
+/// cycle with that mask in a scene without textures (it takes the volume instead, tested
+/// below). Such a frame traces with the `white` sampler.
 #[test]
 fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
     let mut skipped = 0;
@@ -277,6 +278,7 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
                         && m.keeps(crate::Without::StillVolume);
                     let skips = skips_moving || skips_still;
                     assert_eq!(r.sort.is_none(), !m.sorts() || skips, "{name} b{bounces}");
+                    assert_eq!(r.trace.no_seeds, skips, "{name} b{bounces}: white sampler");
                     if skips {
                         skipped += 1;
                         let passes = [
@@ -288,7 +290,15 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
                         ];
                         assert_eq!(r.passes, passes, "{name}: only the trace and the image");
                         let sorting = recipe(&RenderConfig { bounces: 2, ..cfg }, view, textured);
-                        assert_eq!(r.trace == sorting.trace, skips_moving, "{name}: the trace");
+                        let own_sampler = TracePlan {
+                            no_seeds: false,
+                            ..r.trace
+                        };
+                        assert_eq!(
+                            own_sampler == sorting.trace,
+                            skips_moving,
+                            "{name}: the trace"
+                        );
                     }
                 }
             }

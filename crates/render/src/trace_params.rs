@@ -56,7 +56,11 @@ pub(crate) fn trace_params(trace: &TracePlan, i: &TraceInputs) -> TraceParams {
         sample_index: 0,
         sample_count: 1,
         max_bounces: c.bounces,
-        sampler_kind: c.effective_sampler() as u32,
+        sampler_kind: if trace.no_seeds {
+            blueshift_sampling::Sampler::White
+        } else {
+            c.effective_sampler()
+        } as u32,
         flags: trace.flags,
         mask_mode: trace.mask_mode,
         mask_size,
