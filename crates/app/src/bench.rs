@@ -202,7 +202,6 @@ pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
-/// The loop table of `--loop-stats` for `samples` samples in all.
 /// The median of a pass's times over `frames` frames, of which it ran in `times.len()`: a
 /// frame that skipped the pass (a still view's G-buffer) counts 0 ms.
 pub(crate) fn pass_median(mut times: Vec<f64>, frames: usize) -> f64 {
@@ -211,6 +210,7 @@ pub(crate) fn pass_median(mut times: Vec<f64>, frames: usize) -> f64 {
     times[times.len() / 2]
 }
 
+/// The loop table of `--loop-stats` for `samples` samples in all.
 fn loop_table(out: &mut String, loops: &LoopStats, samples: f64, width: u32) -> Result<()> {
     let total = loops.total();
     let pct = |u: Option<f64>| u.map_or("-".to_string(), |u| format!("{:.1}%", 100.0 * u));

@@ -178,14 +178,11 @@ impl Recipes {
 pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> FrameRecipe {
     let m = cfg.method;
     let moving = view == ViewState::Moving;
+    let trace = trace_plan(cfg, moving, textured);
     // No sort where the trace reads no seed. The point cycle's history then keeps the slots
     // of the last sorted frames: each holds the same seeds per block, so the first still
     // frame's sort permutes them as ever, ranked by older keys for one cycle.
-    let reads_seeds = m.reads_seeds(moving, cfg.bounces, textured);
-    let trace = TracePlan {
-        no_seeds: !reads_seeds,
-        ..trace_plan(cfg, moving, textured)
-    };
+    let reads_seeds = !trace.no_seeds;
     let mut passes = vec![Pass::ClearStatus];
     if m.anchors_mask() {
         passes.push(Pass::FollowAnchors);
@@ -264,6 +261,7 @@ pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> Fra
 /// `moving` or not and a scene with textures or not.
 fn trace_plan(cfg: &RenderConfig, moving: bool, textured: bool) -> TracePlan {
     let m = cfg.method;
+    let no_seeds = !m.reads_seeds(moving, cfg.bounces, textured);
     if m.volume_vertex(moving, cfg.bounces, textured) {
         use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_RECORD_PRIMARY};
         return TracePlan {
@@ -273,7 +271,7 @@ fn trace_plan(cfg: &RenderConfig, moving: bool, textured: bool) -> TracePlan {
             mask_mode: MASK_MODE_SPATIOTEMPORAL,
             mask: MaskSource::Stbn,
             cycle_phase: m.cycles_points(),
-            no_seeds: true,
+            no_seeds,
         };
     }
     let dims = m.mask_dims(moving);
@@ -302,7 +300,7 @@ fn trace_plan(cfg: &RenderConfig, moving: bool, textured: bool) -> TracePlan {
         mask_mode,
         mask,
         cycle_phase: m.cycles_points(),
-        no_seeds: false,
+        no_seeds,
     }
 }
 
