@@ -40,15 +40,13 @@ float g_mask_rank[MASK_DIMS];
 float g_mask_turn[MASK_DIMS];
 
 // Whether a pixel takes mask dimension `dim` (the first MASK_DIMS dimensions, or those the
-// flags' dimension bits select, or with `shade_edge` the light sample's two; the jitter's
-// two not with `seed_jitter`), and its value, read at g_mask_px, each dimension at its own
-// fixed offset so the dimensions decorrelate. The mask's side is a power of two
-// (blueshift_assets checks every mask it loads): the wrap is a bit mask and the rank's scale
-// exact as a product.
+// flags' dimension bits select; the jitter's two not with `seed_jitter`), and its value,
+// read at g_mask_px, each dimension at its own fixed offset so the dimensions decorrelate.
+// The mask's side is a power of two (blueshift_assets checks every mask it loads): the wrap
+// is a bit mask and the rank's scale exact as a product.
 #define MASK_INIT(dim)                                                                         \
     {                                                                                          \
-        bool light = dim == 2u || dim == 3u;                                                   \
-        bool take = (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u || (light && shade_edge)) && \
+        bool take = (dim_set == 0u || ((dim_set >> dim) & 1u) != 0u) &&                        \
                     !(dim < 2u && seed_jitter);                                                \
         if (P.mask_mode != MASK_MODE_NONE && take) g_mask_from |= 1u << dim;                  \
         uvec2 q = (g_mask_px + uvec2(P.mask_offset_x, P.mask_offset_y) +                       \
@@ -64,10 +62,8 @@ float g_mask_turn[MASK_DIMS];
 // Sets g_mask_*, after main has set g_mask_px. The pixel's flags (main sets them from its
 // previous primary hit): `seed_jitter` (TRACE_FLAG_SEED_JITTER_ON_TEXTURES on a textured
 // one) takes the jitter from the seed; `sobol_jitter` (TRACE_FLAG_SOBOL_JITTER on an
-// untextured one) walks Sobol's points instead of R2's for it; `shade_edge`
-// (TRACE_FLAG_SHADE_EDGES on a pixel the sorting pass marked PRIMARY_SHADE_EDGE) takes the
-// light sample (dimensions 2 and 3) from the mask.
-void mask_init(bool seed_jitter, bool sobol_jitter, bool shade_edge) {
+// untextured one) walks Sobol's points instead of R2's for it.
+void mask_init(bool seed_jitter, bool sobol_jitter) {
     uint dim_set = P.flags >> TRACE_FLAG_MASK_DIMS_SHIFT;
     uint n = P.mask_size;
     uint layer = P.mask_mode == MASK_MODE_SPATIOTEMPORAL ? P.mask_step : 0u;

@@ -112,12 +112,6 @@ layout(set = 0, binding = 10, scalar) readonly buffer Gate { uint pairs_gate[2];
 layout(set = 0, binding = 7, scalar) buffer CycleHistory { uvec2 cycle_history[]; };
 // The running mean of the earlier frames (accumulate), vec4 per visible pixel.
 layout(set = 0, binding = 8, scalar) readonly buffer Accum { vec4 accum[]; };
-#if !SORT_SAMPLE_KEYS
-// The trace's primary_flags, W*H: the pass sets PRIMARY_SHADE_EDGE on marked pixels (the
-// trace, which records every frame, clears it).
-layout(set = 0, binding = 9, scalar) buffer CycleFlags { uint cycle_flags[]; };
-#include "shade_edges.glsl"
-#endif
 #endif
 
 // Orders like the float (CPU twin: sort_key): positives over 0x80000000, negatives inverted,
@@ -297,7 +291,6 @@ void main() {
 #if SORT_CYCLE
     uint pixels = p.width * p.height;
 #if SORT_SAMPLE_KEYS
-#define LOAD_MEAN(s, at)
     // The block net's point the seed takes at the next phase, in the first vertex's light
     // sample dimensions, as its index along the Hilbert curve.
 #define SAMPLE_KEY(s) { \
@@ -305,11 +298,8 @@ void main() {
         val[s] = float(sample_key_code(key_bits.x, key_bits.y)); }
 #else
 #define SAMPLE_KEY(s)
-    uint means[SORT_SLOTS];  // the running means in fixed point (shade_edge_fixed)
-#define LOAD_MEAN(s, at) means[s] = shade_edge_fixed(accum[at].w);
 #endif
 #define LOAD_CYCLE(s, at) { \
-        LOAD_MEAN(s, at) \
         float k = p.cycle_mean_count > 0u ? val[s] - accum[at].w : val[s]; \
         uvec2 rec = uvec2(seed[s], floatBitsToUint(k)); \
         if (valid[s]) cycle_history[p.cycle_phase * pixels + at] = rec; \
@@ -335,18 +325,6 @@ void main() {
 #define LOAD_HISTORY(s, at)
 #endif
     SORT_EACH(LOAD)
-#if SORT_CYCLE
-    // Shading edges rank in classes of their own: their seeds' keys are the mask's errors.
-    // (Under motion the sample-key variant marks none.)
-#if !SORT_SAMPLE_KEYS
-    bool marked[SORT_SLOTS];
-    shade_edge_marks(valid, cls, means,
-                     p.cycle_shade_edges != 0u && p.cycle_mean_count >= SHADE_EDGE_MIN_FRAMES,
-                     marked);
-#define SPLIT(s) cls[s] += marked[s] ? SHADE_EDGE_CLASS : 0u;
-    SORT_EACH(SPLIT)
-#endif
-#endif
 
     float key[SORT_SLOTS];
 #if SORT_HISTORY || SORT_SKEW
@@ -442,11 +420,4 @@ void main() {
     }
 #endif
     SORT_EACH(STORE)
-#if SORT_CYCLE && !SORT_SAMPLE_KEYS
-#define MARK_OUT(s) if (marked[s]) { \
-        uint at = uint(origin.y + SY(s)) * p.width + uint(origin.x + SX(s)); \
-        cycle_flags[at] |= PRIMARY_SHADE_EDGE; \
-    }
-    SORT_EACH(MARK_OUT)
-#endif
 }

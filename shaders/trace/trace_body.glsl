@@ -181,11 +181,9 @@ void main() {
 #if TRACE_MASK
     uint flag_index = px.y * P.width + px.x;
     g_textured0 = false;
-    uint primary = primary_flags[flag_index];
-    bool was_textured = (primary & PRIMARY_TEXTURED) != 0u;
+    bool was_textured = (primary_flags[flag_index] & PRIMARY_TEXTURED) != 0u;
     mask_init((P.flags & TRACE_FLAG_SEED_JITTER_ON_TEXTURES) != 0u && was_textured,
-              (P.flags & TRACE_FLAG_SOBOL_JITTER) != 0u && !was_textured,
-              (P.flags & TRACE_FLAG_SHADE_EDGES) != 0u && (primary & PRIMARY_SHADE_EDGE) != 0u);
+              (P.flags & TRACE_FLAG_SOBOL_JITTER) != 0u && !was_textured);
 #endif
     uint s0 = P.sample_index, count = P.sample_count;
     vec3 l = trace_paths(px, seed, s0, count) / float(count);

@@ -40,7 +40,6 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
         let volb = Buffer::from_slice(&dev, "cycle.volume", &vol).unwrap();
         let mut est = Buffer::new(&dev, "cycle.estimate", pixels as u64 * 16, host).unwrap();
         let mut accum = Buffer::new(&dev, "cycle.accum", pixels as u64 * 16, host).unwrap();
-        let flags = Buffer::from_slice(&dev, "cycle.flags", &vec![0u32; pixels]).unwrap();
         let (mut cpu_seeds, mut cpu_hist) = (init.clone(), vec![[0u32; 2]; history_len]);
         for frame in 0..u64::from(CYCLE_FRAMES) + 5 {
             // Few distinct values (ties), a NaN now and then.
@@ -74,7 +73,6 @@ fn cycle_keys_and_sort_match_cpu_over_cycles() {
                 cycle: Some(CycleInput {
                     history: &history,
                     accum: &accum,
-                    flags: &flags,
                 }),
                 ..SortInput::new(&est, &volb)
             };

@@ -75,7 +75,7 @@ fn marked_pixels_take_the_seed_jitter_while_the_view_moves() {
 /// bounces, after writing `flags` into the trace's `primary_flags` (one per pixel); `moving`:
 /// the camera moved before it. (In direct light on a scene without textures the default's
 /// still frame reads no flag: it takes the volume, `still_volume.rs`.)
-pub(crate) fn second_frame_with_flags(
+fn second_frame_with_flags(
     gpu: &Gpu,
     scene: &Scene,
     method: Method,

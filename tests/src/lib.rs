@@ -59,8 +59,6 @@ mod rng;
 #[cfg(test)]
 mod sampling;
 #[cfg(test)]
-mod shade;
-#[cfg(test)]
 mod sort_variants;
 #[cfg(test)]
 mod still_volume;

@@ -2,14 +2,11 @@
 use crate::permute::{estimate, random_table};
 use crate::{Gpu, Lcg};
 use blueshift_device::Buffer;
-use blueshift_layout::params::{
-    PAIRS_GATE_LIMIT, PAIRS_GATE_ONE, PRIMARY_SHADE_EDGE, PRIMARY_TEXTURED, SHADE_EDGE_MIN_FRAMES,
-    SORT_PAIRS_FROM_GATE,
-};
+use blueshift_layout::params::{PAIRS_GATE_LIMIT, PAIRS_GATE_ONE, SORT_PAIRS_FROM_GATE};
 use blueshift_permute::{
     CYCLE_FRAMES, CycleInput, CycleParams, PairsGate, PermutePasses, Screen, SortInput, SortParams,
     SortVariant, cycle_keys_cpu, is_permutation_of, pack_mask_moves, retarget_seeds_cpu,
-    shade_edges_cpu, sort_seeds_cpu, with_cycle,
+    sort_seeds_cpu, with_cycle,
 };
 
 /// Every shader of the sorting pass (`SortVariant`: classes, history, pairs, skew counts,
@@ -57,8 +54,8 @@ fn every_sort_variant_matches_cpu() {
     // sample.
     let volume: Vec<u32> = rng.perm(n * n).into_iter().chain(mask.clone()).collect();
     let volume_b = upload("variant.volume", &volume);
-    // Running means with a jump down the middle of the screen and a little noise (shading
-    // edges there and nowhere else), one NaN and one negative value.
+    // Running means with a jump down the middle of the screen and a little noise, one NaN and
+    // one negative value.
     let mut means: Vec<f32> = (0..px as u32)
         .map(|i| if i % w < w / 2 { 1.0 } else { 4.0 } + (rng.next_u32() % 3) as f32 * 0.05)
         .collect();
@@ -79,14 +76,9 @@ fn every_sort_variant_matches_cpu() {
         next_valid: 1,
         mask_size: n,
         mask_layer: 1,
-        mean_count: SHADE_EDGE_MIN_FRAMES,
+        mean_count: 16,
         sample_keys: 0,
     };
-    // The trace's flags as it leaves them (the textured bit at random, no marks): the pass
-    // adds marks and keeps the other bits.
-    let flags: Vec<u32> = (0..px)
-        .map(|_| rng.next_u32() % 2 * PRIMARY_TEXTURED)
-        .collect();
     let mut cycle_history = vec![[0u32; 2]; CYCLE_FRAMES as usize * px];
     for (i, slot) in cycle_history[4 * px..5 * px].iter_mut().enumerate() {
         let at = (i as u32 / w) * sc.stride() + i as u32 % w;
@@ -125,12 +117,6 @@ fn every_sort_variant_matches_cpu() {
                 .unwrap()
         };
         let p = if v.cycle { with_cycle(p, &cp) } else { p };
-        // Shading edges while the seeds rank by their recorded keys (a still view).
-        let p = SortParams {
-            cycle_shade_edges: u32::from(v.cycle && !keys),
-            ..p
-        };
-        let flags_b = upload("variant.flags", &flags);
         let hist_b = upload(
             "variant.cycle_history",
             bytemuck::cast_slice(&cycle_history),
@@ -154,7 +140,6 @@ fn every_sort_variant_matches_cpu() {
             cycle: v.cycle.then_some(CycleInput {
                 history: &hist_b,
                 accum: &accum_b,
-                flags: &flags_b,
             }),
         };
         let rec = gpu.rec.as_mut().unwrap();
@@ -165,7 +150,7 @@ fn every_sort_variant_matches_cpu() {
 
         let zeros_u = vec![0u32; px];
         let zeros_f = vec![0f32; px];
-        let mut cls = if v.classes { classes.clone() } else { zeros_u };
+        let cls = if v.classes { classes.clone() } else { zeros_u };
         let hist = if v.history { &history } else { &zeros_f };
         let mut cpu = init.clone();
         let (keys, slice) = if v.cycle {
@@ -173,22 +158,6 @@ fn every_sort_variant_matches_cpu() {
             let out = cycle_keys_cpu(&cp, &lum, &means, &mut cpu, &mut h, &volume);
             let got: Vec<[u32; 2]> = hist_b.read().unwrap();
             assert_eq!(got, h, "{name}: history slots");
-            let mut want = flags.clone();
-            shade_edges_cpu(&p, &means, &mut cls, &mut want);
-            let got: Vec<u32> = flags_b.read().unwrap();
-            assert_eq!(got, want, "{name}: shading-edge marks");
-            let marked = want
-                .iter()
-                .filter(|&&f| f & PRIMARY_SHADE_EDGE != 0)
-                .count();
-            if p.cycle_shade_edges != 0 {
-                assert!(
-                    marked > 0 && marked < px / 2,
-                    "{name}: {marked} of {px} marked"
-                );
-            } else {
-                assert_eq!(marked, 0, "{name}: marks left while ranking sample keys");
-            }
             (out.keys, out.mask)
         } else {
             (lum.clone(), mask.clone())

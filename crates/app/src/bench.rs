@@ -21,9 +21,9 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 3)]
     pub frames: u32,
     /// Untimed frames first, along the same camera path. The default reaches every method's
-    /// steady state: lavapipe compiles pipelines on first use, and a still `sort-cycle` view
-    /// starts marking shading edges (extra work in its sort) once 16 frames are in the
-    /// running mean.
+    /// steady state: lavapipe compiles pipelines on first use, and `sort-cycle` ranks the
+    /// keys its seeds recorded a point cycle (16 frames) earlier only once a whole cycle has
+    /// run.
     #[arg(long, default_value_t = DEFAULT_WARMUP)]
     pub warmup: u32,
     /// Camera motion over the timed frames, as for `render` (static, pan:PX, orbit:DEG,
@@ -38,9 +38,10 @@ pub struct BenchArgs {
     pub loop_stats: bool,
 }
 
-/// One frame more than the running mean needs before the still sort marks shading edges,
-/// so the first timed frame also traces with the marks.
-const DEFAULT_WARMUP: u32 = blueshift_layout::params::SHADE_EDGE_MIN_FRAMES + 1;
+/// Untimed frames by default: the first compiles lavapipe's pipelines, and after a whole
+/// point cycle of `sort-cycle` (`CYCLE_FRAMES`) its sort ranks the keys recorded a cycle
+/// earlier, its steady state; one frame more, so the first timed frame is past it.
+const DEFAULT_WARMUP: u32 = blueshift_layout::params::CYCLE_FRAMES + 1;
 
 pub fn run(gpu: &GpuOpts, a: &BenchArgs) -> Result<()> {
     if !(1..=1000).contains(&a.frames) {

@@ -30,15 +30,8 @@ pub fn all() -> Vec<(&'static str, String)> {
                     params::TRACE_FLAG_SEED_JITTER_ON_TEXTURES,
                 )
                 .constant("PRIMARY_TEXTURED", params::PRIMARY_TEXTURED)
-                .constant("PRIMARY_SHADE_EDGE", params::PRIMARY_SHADE_EDGE)
-                .constant("TRACE_FLAG_SHADE_EDGES", params::TRACE_FLAG_SHADE_EDGES)
                 .constant("MASK_DIM_OFFSET_X", params::MASK_DIM_OFFSET_X)
                 .constant("MASK_DIM_OFFSET_Y", params::MASK_DIM_OFFSET_Y)
-                .constant("SHADE_EDGE_PER_MILLE", params::SHADE_EDGE_PER_MILLE)
-                .constant("SHADE_EDGE_MIN_FRAMES", params::SHADE_EDGE_MIN_FRAMES)
-                .constant_f32("SHADE_EDGE_SCALE", params::SHADE_EDGE_SCALE)
-                .constant_f32("SHADE_EDGE_MAX_MEAN", params::SHADE_EDGE_MAX_MEAN)
-                .constant("SHADE_EDGE_CLASS", params::SHADE_EDGE_CLASS)
                 .constant(
                     "TRACE_FLAG_MASK_DIMS_SHIFT",
                     params::TRACE_FLAG_MASK_DIMS_SHIFT,

@@ -45,10 +45,6 @@ gpu_struct! {
         pub cycle_next_valid: u32,
         pub cycle_mean_count: u32,
         pub cycle_sample_keys: u32,
-        /// 1 (a still view, error keys): mark the block's shading edges in the trace's
-        /// flags (`PRIMARY_SHADE_EDGE`) and rank their pixels in classes of their own
-        /// (`shade_edge_marks_cpu` is the rule); 0: mark none (the trace clears old marks).
-        pub cycle_shade_edges: u32,
     }
 }
 
@@ -233,29 +229,6 @@ pub const MASK_DIM_OFFSET_X: u32 = 37;
 pub const MASK_DIM_OFFSET_Y: u32 = 71;
 /// `primary_flags` bit: the primary hit's material has a texture.
 pub const PRIMARY_TEXTURED: u32 = 1;
-/// `primary_flags` bit, set by sort-cycle's sorting pass in a still view: the pixel is a
-/// shading edge (a jump of the running mean inside its surface class, mostly a sharp shadow),
-/// where a seed's recorded error says little about its error at another pixel of the class.
-pub const PRIMARY_SHADE_EDGE: u32 = 2;
-/// `TraceParams::flags` (mask variants): a pixel marked `PRIMARY_SHADE_EDGE` takes its
-/// light sample (dimensions 2 and 3) from the rotating mask, whose walk per pixel converges
-/// where the sort's ranking cannot help.
-pub const TRACE_FLAG_SHADE_EDGES: u32 = 256;
-/// Shading edges: a pixel whose running mean, blurred 3x3 (weights 1-2-1) over its class in
-/// the sorting block, differs from a same-class 4-neighbour's by more than this fraction
-/// (per mille) of the larger of the two, floored at half the block's mean; then dilated by
-/// one pixel within the class.
-pub const SHADE_EDGE_PER_MILLE: u32 = 300;
-/// Frames the running mean must hold before shading edges are marked (a noisier mean marks
-/// noise).
-pub const SHADE_EDGE_MIN_FRAMES: u32 = 16;
-/// Fixed-point scale of the running mean in the shading-edge test (values clamp at
-/// `SHADE_EDGE_MAX_MEAN`), so that the GPU and its twin compare integers.
-pub const SHADE_EDGE_SCALE: f32 = 256.0;
-pub const SHADE_EDGE_MAX_MEAN: f32 = 65535.0;
-/// Added to the class of a marked pixel: its own class in the ranking (classes are below
-/// 2^24: in-block indices from classify_pixels).
-pub const SHADE_EDGE_CLASS: u32 = 1 << 24;
 /// `TraceParams::flags`: bits from this one up select which of the first `MASK_DIMS`
 /// dimensions a mask mode drives (bit d: dimension d); none set: all of them.
 pub const TRACE_FLAG_MASK_DIMS_SHIFT: u32 = 16;

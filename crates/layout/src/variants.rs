@@ -150,9 +150,9 @@ pub struct SortVariant {
     /// `SortParams::cycle_*`): the point cycle fused into the sort.
     pub cycle: bool,
     /// With `cycle`: the seeds rank by their next light sample
-    /// (`SortParams::cycle_sample_keys`, a moving view), which binds no shading-edge flags. A
-    /// shader of its own rather than a run-time branch: llvmpipe runs both sides of a uniform
-    /// branch, so a still view would pay for keys it never uses.
+    /// (`SortParams::cycle_sample_keys`, a moving view). A shader of its own rather than a
+    /// run-time branch: llvmpipe runs both sides of a uniform branch, so a still view would
+    /// pay for keys it never uses.
     pub sample_keys: bool,
 }
 

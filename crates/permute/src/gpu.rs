@@ -43,10 +43,6 @@ pub struct CycleInput<'a> {
     pub history: &'a Buffer,
     /// vec4 per visible pixel: the running mean of the earlier frames.
     pub accum: &'a Buffer,
-    /// The trace's `primary_flags` (u32 per visible pixel): a still frame's pass sets
-    /// `PRIMARY_SHADE_EDGE` on the marked pixels (`shade_edges_cpu`); the trace clears it
-    /// when it records the next primary hits (`TRACE_FLAG_RECORD_PRIMARY`).
-    pub flags: &'a Buffer,
 }
 
 impl<'a> SortInput<'a> {
@@ -65,7 +61,7 @@ impl<'a> SortInput<'a> {
     }
 
     /// The optional buffers in `SORT_OPTIONAL`'s order.
-    fn optional(&self) -> [Option<&'a Buffer>; 8] {
+    fn optional(&self) -> [Option<&'a Buffer>; 7] {
         [
             self.classes,
             self.history,
@@ -74,7 +70,6 @@ impl<'a> SortInput<'a> {
             self.retarget,
             self.cycle.map(|c| c.history),
             self.cycle.map(|c| c.accum),
-            self.cycle.map(|c| c.flags),
         ]
     }
 
@@ -90,11 +85,7 @@ impl<'a> SortInput<'a> {
         }
         for ((b, on), given) in SORT_OPTIONAL
             .iter()
-            // The cycle's input always holds its flags; a sample-key shader leaves them unbound.
-            .zip(optional_flags(SortVariant {
-                sample_keys: false,
-                ..v
-            }))
+            .zip(optional_flags(v))
             .zip(self.optional())
         {
             match (on, given.is_some()) {
@@ -107,13 +98,11 @@ impl<'a> SortInput<'a> {
     }
 }
 
-/// Whether `v` binds each of `SORT_OPTIONAL`; with sample keys (a moving view, which marks no
-/// shading edges) the cycle's shader binds no flags.
-fn optional_flags(v: SortVariant) -> [bool; 8] {
-    let flags = v.cycle && !v.sample_keys;
+/// Whether `v` binds each of `SORT_OPTIONAL`.
+fn optional_flags(v: SortVariant) -> [bool; 7] {
     let gate = v.skew && v.pairs;
     [
-        v.classes, v.history, v.skew, gate, v.retarget, v.cycle, v.cycle, flags,
+        v.classes, v.history, v.skew, gate, v.retarget, v.cycle, v.cycle,
     ]
 }
 
@@ -124,8 +113,8 @@ const SORT_BINDINGS: [Binding; 3] = [
     Binding::storage(2, "seeds"),
 ];
 /// Bindings of the extensions, in the order of `SortInput`'s classes, history, stats, gate,
-/// retarget and cycle (three buffers).
-const SORT_OPTIONAL: [Binding; 8] = [
+/// retarget and cycle (two buffers).
+const SORT_OPTIONAL: [Binding; 7] = [
     Binding::storage(3, "classes"),
     Binding::storage(4, "hist_mean"),
     Binding::storage(5, "sort_stats"),
@@ -133,7 +122,6 @@ const SORT_OPTIONAL: [Binding; 8] = [
     Binding::storage(6, "seeds_out"),
     Binding::storage(7, "cycle_history"),
     Binding::storage(8, "accum"),
-    Binding::storage(9, "cycle_flags"),
 ];
 
 /// Pipelines of the permutation passes.

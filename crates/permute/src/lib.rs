@@ -18,7 +18,6 @@ mod history;
 mod pairs_gate;
 mod reproject;
 mod reproject_gpu;
-mod shade;
 mod similar;
 mod skew;
 
@@ -40,7 +39,6 @@ pub use reproject::{
     Reprojected, mean_motion, project_previous, reproject_motion_cpu, reproject_seeds_cpu,
 };
 pub use reproject_gpu::Reprojection;
-pub use shade::{shade_edge_fixed, shade_edge_marks_cpu, shade_edges_cpu};
 pub use similar::similar;
 
 /// Errors of the permutation passes.
@@ -128,7 +126,6 @@ impl Screen {
             cycle_next_valid: 0,
             cycle_mean_count: 0,
             cycle_sample_keys: 0,
-            cycle_shade_edges: 0,
         })
     }
 }

@@ -330,29 +330,16 @@ impl Method {
         }
     }
 
-    /// Whether a still view marks shading edges (`SortParams::cycle_shade_edges`): pixels
-    /// where the running mean jumps inside a surface class (mostly sharp shadows) rank in
-    /// classes of their own and take the light sample from the rotating mask
-    /// (`TRACE_FLAG_SHADE_EDGES`). There a seed's recorded error does not predict its error at
-    /// another pixel, and the mask's per-pixel walk converges better (docs/algorithm.md).
-    pub fn shade_edges(self) -> bool {
-        self.has(|p| {
-            p.points == Points::Cycle && matches!(p.mask, MaskDims::Motion | MaskDims::Vertex)
-        }) && self.keeps(Without::ShadeEdges)
-    }
-
     /// The trace pass's flags for a jitter taken from the mask: such a method records which
     /// pixels show a textured surface (`TRACE_FLAG_RECORD_PRIMARY`), and while the view moves
     /// those pixels take the seed's jitter instead (`TRACE_FLAG_SEED_JITTER_ON_TEXTURES`: on
     /// textures the mask's shifted jitter is worse than the seeds' sorted block nets). With a
     /// still view the mask's rotated jitter stays everywhere: it walks a (0,2)-sequence per
     /// pixel where the previous primary hit was untextured (`TRACE_FLAG_SOBOL_JITTER`), R2
-    /// on textured pixels; with [`Method::shade_edges`] marked pixels take the mask's light
-    /// sample.
+    /// on textured pixels.
     pub fn jitter_flags(self, moving: bool) -> u32 {
         use blueshift_layout::params::{
-            TRACE_FLAG_RECORD_PRIMARY, TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SHADE_EDGES,
-            TRACE_FLAG_SOBOL_JITTER,
+            TRACE_FLAG_RECORD_PRIMARY, TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SOBOL_JITTER,
         };
         let flag = |on: bool, f: u32| if on { f } else { 0 };
         if self.mask_dims(moving) & JITTER_DIMS == 0 {
@@ -366,7 +353,6 @@ impl Method {
         } else {
             TRACE_FLAG_RECORD_PRIMARY
                 | flag(self.keeps(Without::SobolJitter), TRACE_FLAG_SOBOL_JITTER)
-                | flag(self.shade_edges(), TRACE_FLAG_SHADE_EDGES)
         }
     }
 

@@ -20,7 +20,6 @@ const FIELDS: [(&str, &[&str]); 9] = [
         &[
             "none",
             "sample-keys",
-            "shade-edges",
             "texture-jitter",
             "sobol-jitter",
             "still-volume",
@@ -84,7 +83,6 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
             p.without = [
                 Without::Nothing,
                 Without::SampleKeys,
-                Without::ShadeEdges,
                 Without::TextureJitter,
                 Without::SobolJitter,
                 Without::StillVolume,
@@ -122,9 +120,6 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
     let needs = match p.without {
         Without::Nothing => None,
         Without::SampleKeys => (p.points != Points::Cycle).then_some("points=cycle"),
-        Without::ShadeEdges => (p.points != Points::Cycle
-            || !matches!(p.mask, MaskDims::Motion | MaskDims::Vertex))
-        .then_some("points=cycle and mask=motion or vertex"),
         Without::TextureJitter | Without::SobolJitter => (p.mask == MaskDims::None)
             .then_some("a mask that drives the jitter (mask other than none)"),
         Without::StillVolume => (p.points != Points::Cycle || p.mask != MaskDims::Vertex)
@@ -287,28 +282,21 @@ mod tests {
         assert_eq!(motion.name().parse::<Method>(), Ok(motion));
         assert_eq!(motion.mask_dims(false), still);
         assert_eq!((motion.mask_dims(true) & !still).count_ones(), 4);
-        assert!(motion.shade_edges() && c.shade_edges());
         // The ablations of the view-state rules are named after the default, and only where
         // their rule exists.
         for rule in [
             "sample-keys",
-            "shade-edges",
             "texture-jitter",
             "sobol-jitter",
+            "still-volume",
         ] {
             let form = format!("sort-cycle:without={rule}");
             let a: Method = form.parse().expect("valid");
             assert_eq!(a.name(), form);
             assert_ne!(a, c);
         }
-        assert!(
-            !"sort-cycle:without=shade-edges"
-                .parse::<Method>()
-                .unwrap()
-                .shade_edges()
-        );
         for bad in [
-            "sort-cycle:mask=jitter,without=shade-edges",
+            "sort-cycle:mask=motion,without=still-volume",
             "sort-cycle:mask=none,without=sobol-jitter",
             "sort-retarget:without=sample-keys",
         ] {

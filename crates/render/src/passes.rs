@@ -90,7 +90,6 @@ pub(crate) fn sort_params(s: &SortPlan, offset: (u32, u32), c: &SortContext) -> 
             };
             let sp = SortParams {
                 mask_size: n,
-                cycle_shade_edges: u32::from(s.shade_edges),
                 ..c.screen.sort_params(s.block, offset)?
             };
             blueshift_permute::with_cycle(sp, &cp)
@@ -120,7 +119,7 @@ fn pairs_of(rule: Pairs) -> u32 {
 /// Records the sorting pass of plan `s` with parameters `sp` on the current seeds (in place,
 /// or retargeted into the other buffer), reading the estimate, the plan's mask and the state
 /// its variant binds: the classes and history means of `surfaces`, the point cycle's
-/// `cycle` history with the running mean and the primary flags.
+/// `cycle` history with the running mean.
 pub(crate) fn sort_seeds(
     rec: &mut Recorder,
     permute: &mut PermutePasses,
@@ -137,7 +136,6 @@ pub(crate) fn sort_seeds(
         (true, Some(c)) => Some(CycleInput {
             history: &c.history,
             accum: &res.accum,
-            flags: &res.primary_flags,
         }),
         (true, None) => return Err(missing("a cycle history")),
     };

@@ -94,8 +94,6 @@ pub enum MaskDims {
     /// [`MaskDims::Jitter`], and while the view moves also the first vertex's BSDF sample:
     /// keys recorded a cycle ago at another place no longer predict it, and the mask's blue
     /// first bounce beats stale keys (with a still view the sort keeps it, and wins at depth).
-    /// With a still view and the point cycle, also the light sample on shading edges
-    /// ([`crate::Method::shade_edges`]).
     Motion,
     /// [`MaskDims::Motion`], and while the view moves also the first vertex's light sample,
     /// so every dimension of the camera ray and the first vertex is the mask's (what `mask-r2`
@@ -128,8 +126,6 @@ pub enum Without {
     /// A moving view ranks by the keys recorded a cycle ago instead of the seeds' next light
     /// sample (`SortParams::cycle_sample_keys`).
     SampleKeys,
-    /// A still view marks no shading edges ([`crate::Method::shade_edges`]).
-    ShadeEdges,
     /// A moving view keeps the mask's jitter on textured pixels too
     /// (`TRACE_FLAG_SEED_JITTER_ON_TEXTURES` off).
     TextureJitter,

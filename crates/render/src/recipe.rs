@@ -57,8 +57,6 @@ pub(crate) struct SortPlan {
     pub count_skew: bool,
     /// The point cycle ranks by the seeds' next light sample (`SortParams::cycle_sample_keys`).
     pub sample_keys: bool,
-    /// The point cycle marks shading edges (`SortParams::cycle_shade_edges`).
-    pub shade_edges: bool,
     /// The spatio-temporal target moves with the image (`target=follow`).
     pub follow_target: bool,
 }
@@ -240,7 +238,6 @@ pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> Fra
             hashed_phase: m.hashes_pair_phase(),
             count_skew: m.adapts_pairs(),
             sample_keys,
-            shade_edges: !moving && m.shade_edges(),
             follow_target: m.follows_target(),
         }
     });

@@ -1,6 +1,6 @@
 use super::*;
 use crate::method::{Grouping, Permutation, Points};
-use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_RECORD_PRIMARY};
+use blueshift_layout::params::MASK_DIMS;
 
 const VIEWS: [ViewState; 2] = [ViewState::Still, ViewState::Moving];
 
@@ -88,7 +88,6 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
                 let keys = v.cycle && moves && p.without != crate::Without::SampleKeys;
                 assert_eq!(v.sample_keys, keys, "{name} {view:?}");
                 assert_eq!(s.sample_keys, v.sample_keys, "{name}");
-                assert!(!(s.shade_edges && moves), "{name}: marks while moving");
                 assert_eq!(v.retarget, r.swap_seeds, "{name}");
                 assert_eq!(s.block, cfg.effective_block(), "{name}");
                 assert_eq!(v.large, SortVariant::large_for(s.block), "{name}");
@@ -170,14 +169,6 @@ fn mask_dimensions_have_a_mask_mode() {
             }
             // Textured pixels' jitter is chosen only where the mask drives the jitter.
             assert_eq!(m.jitter_flags(moving) != 0, dims & 3 != 0, "{name}");
-            // The sort only sets shading-edge marks; the trace's record clears them.
-            if r.sort.is_some_and(|s| s.shade_edges) {
-                assert_ne!(
-                    r.trace.flags & TRACE_FLAG_RECORD_PRIMARY,
-                    0,
-                    "{name}: marks never cleared"
-                );
-            }
         }
     }
     assert!(some > 0, "no method leaves dimensions to the mask");
@@ -187,17 +178,14 @@ fn mask_dimensions_have_a_mask_mode() {
 /// the other view state's recipe is the default's.
 #[test]
 fn each_ablation_drops_one_rule_in_one_view_state() {
-    use blueshift_layout::params::{
-        TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SHADE_EDGES, TRACE_FLAG_SOBOL_JITTER,
-    };
+    use blueshift_layout::params::{TRACE_FLAG_SEED_JITTER_ON_TEXTURES, TRACE_FLAG_SOBOL_JITTER};
     let of = |m: &str, view| recipe(&config(m.parse().expect(m), None), view, true);
     let still = of("sort-cycle", ViewState::Still);
     let moving = of("sort-cycle", ViewState::Moving);
     let sort = |r: &FrameRecipe| r.sort.expect("sort-cycle sorts");
     // The rules are on in the default: each ablation below would compare against nothing.
-    assert!(sort(&moving).sample_keys && sort(&still).shade_edges);
+    assert!(sort(&moving).sample_keys);
     for (r, flag) in [
-        (&still, TRACE_FLAG_SHADE_EDGES),
         (&still, TRACE_FLAG_SOBOL_JITTER),
         (&moving, TRACE_FLAG_SEED_JITTER_ON_TEXTURES),
     ] {
@@ -206,7 +194,6 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
     // (ablation, view state it changes, whether the sort or only the trace flag `bit` changes)
     let cases = [
         ("sample-keys", ViewState::Moving, 0),
-        ("shade-edges", ViewState::Still, TRACE_FLAG_SHADE_EDGES),
         (
             "texture-jitter",
             ViewState::Moving,
@@ -228,13 +215,9 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
         let r = of(&name, view);
         assert_ne!(&r, changed, "{name}: changed nothing");
         let mut expected = sort(changed);
-        match rule {
-            "sample-keys" => {
-                expected.sample_keys = false;
-                expected.variant.sample_keys = false;
-            }
-            "shade-edges" => expected.shade_edges = false,
-            _ => {}
+        if rule == "sample-keys" {
+            expected.sample_keys = false;
+            expected.variant.sample_keys = false;
         }
         assert_eq!(r.sort, Some(expected), "{name}: sort plan");
         assert_eq!(
@@ -311,15 +294,13 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
 }
 
 /// A still direct-light frame of the default in a scene without textures is `stbn`'s frame:
-/// the volume's mode and buffer, every mask dimension, no seed-side rule (Sobol walk, shading
-/// edges) and no sort; the frame time is the mask's. Its ablation keeps the sorted seeds,
+/// the volume's mode and buffer, every mask dimension, no seed-side rule (Sobol walk) and no
+/// sort; the frame time is the mask's. Its ablation keeps the sorted seeds,
 /// exactly the recipe the default runs where textures are (which only the volume rule tells
 /// apart from a scene without them, while still), and changes no moving frame.
 #[test]
 fn a_still_direct_frame_without_textures_takes_the_volume() {
-    use blueshift_layout::params::{
-        MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_SHADE_EDGES, TRACE_FLAG_SOBOL_JITTER,
-    };
+    use blueshift_layout::params::{MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_SOBOL_JITTER};
     let of = |m: &str, view, bounces, textured| {
         let method = Method::parse_comparison(m).expect(m);
         let cfg = RenderConfig {
@@ -345,10 +326,7 @@ fn a_still_direct_frame_without_textures_takes_the_volume() {
             (1 << MASK_DIMS) - 1,
             "b{bounces}: every mask dimension"
         );
-        assert_eq!(
-            r.trace.flags & (TRACE_FLAG_SOBOL_JITTER | TRACE_FLAG_SHADE_EDGES),
-            0
-        );
+        assert_eq!(r.trace.flags & TRACE_FLAG_SOBOL_JITTER, 0);
         assert_eq!(r.sort, None, "b{bounces}");
         let ablation = "sort-cycle:without=still-volume";
         assert_eq!(

@@ -23,9 +23,8 @@ struct SortParams {
     uint cycle_next_valid; // offset 64, size 4
     uint cycle_mean_count; // offset 68, size 4
     uint cycle_sample_keys; // offset 72, size 4
-    uint cycle_shade_edges; // offset 76, size 4
 };
-const uint SORT_PARAMS_SIZE = 80;
+const uint SORT_PARAMS_SIZE = 76;
 
 struct TraceParams {
     vec3 cam_origin; // offset 0, size 12
@@ -69,15 +68,8 @@ const uint TRACE_FLAG_SOBOL_JITTER = 128u;
 const uint TRACE_FLAG_RECORD_PRIMARY = 32u;
 const uint TRACE_FLAG_SEED_JITTER_ON_TEXTURES = 64u;
 const uint PRIMARY_TEXTURED = 1u;
-const uint PRIMARY_SHADE_EDGE = 2u;
-const uint TRACE_FLAG_SHADE_EDGES = 256u;
 const uint MASK_DIM_OFFSET_X = 37u;
 const uint MASK_DIM_OFFSET_Y = 71u;
-const uint SHADE_EDGE_PER_MILLE = 300u;
-const uint SHADE_EDGE_MIN_FRAMES = 16u;
-const float SHADE_EDGE_SCALE = 256.0;
-const float SHADE_EDGE_MAX_MEAN = 65535.0;
-const uint SHADE_EDGE_CLASS = 16777216u;
 const uint TRACE_FLAG_MASK_DIMS_SHIFT = 16u;
 const uint ANCHOR_FRAC_BITS = 8u;
 const float DEMODULATE_MIN_ALBEDO = 0.02;
