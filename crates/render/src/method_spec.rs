@@ -24,6 +24,7 @@ const FIELDS: [(&str, &[&str]); 9] = [
             "texture-jitter",
             "sobol-jitter",
             "still-volume",
+            "slow-volume",
         ],
     ),
 ];
@@ -88,6 +89,7 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
                 Without::TextureJitter,
                 Without::SobolJitter,
                 Without::StillVolume,
+                Without::SlowVolume,
             ][i]
         }
     }
@@ -127,7 +129,8 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
         .then_some("points=cycle and mask=motion or vertex"),
         Without::TextureJitter | Without::SobolJitter => (p.mask == MaskDims::None)
             .then_some("a mask that drives the jitter (mask other than none)"),
-        Without::StillVolume => (p.points != Points::Cycle || p.mask != MaskDims::Vertex)
+        Without::StillVolume | Without::SlowVolume => (p.points != Points::Cycle
+            || p.mask != MaskDims::Vertex)
             .then_some("points=cycle and mask=vertex"),
     };
     if let Some(needs) = needs {
@@ -295,6 +298,8 @@ mod tests {
             "shade-edges",
             "texture-jitter",
             "sobol-jitter",
+            "still-volume",
+            "slow-volume",
         ] {
             let form = format!("sort-cycle:without={rule}");
             let a: Method = form.parse().expect("valid");
