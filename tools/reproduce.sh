@@ -30,10 +30,10 @@ cd "$(dirname "$0")/.."
 RUNS=(
   "motion|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:target=screen,sort-cycle:mask=none,sort-cycle:mask=motion,sort-cycle:grouping=surfaces,sort-cycle:without=sample-keys,sort-cycle:without=sobol-jitter,sort-cycle:without=still-volume --camera static,strafe:2.5 --bounces 1,8 --sequences 8 --width 128 --height 128"
   "motion-textured|--scene textured --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:target=screen,sort-cycle:mask=motion,sort-cycle:without=sample-keys,sort-cycle:without=texture-jitter --camera strafe:2.5 --bounces 1,8 --sequences 8 --width 128 --height 128"
-  "motion-speeds|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:target=screen --camera strafe:1,strafe:5 --bounces 1,8 --sequences 8 --width 128 --height 128"
+  "motion-speeds|--methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:target=screen,sort-cycle:without=slow-volume --camera strafe:1,strafe:5 --bounces 1,8 --sequences 8 --width 128 --height 128"
   "motion-edges|--scene edges --methods white,sobol,stbn,fast,mask-r2,mask-rot,mask-rot-follow,blocknet,sort-grid-adaptive,sort-cycle,sort-cycle:target=screen,sort-cycle:mask=none,sort-cycle:mask=motion,sort-cycle:without=sample-keys,sort-cycle:without=sobol-jitter,sort-cycle:without=still-volume --camera static,strafe:2.5 --bounces 1,8 --sequences 8 --width 128 --height 128"
   "still-256|--methods white,sobol,stbn,mask-r2,mask-rot,blocknet,sort-cycle,sort-cycle:without=still-volume --camera static --bounces 1,8 --sequences 4 --width 256 --height 256"
-  "cornell|--methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle --camera static,pan:1,orbit:1 --bounces 1,8 --sequences 4 --width 128 --height 128"
+  "cornell|--methods white,sobol,hbo19,stbn,fast,mask-r2,sort-retarget,sort-grid-adaptive,sort-cycle,sort-cycle:without=slow-volume --camera static,pan:1,orbit:1 --bounces 1,8 --sequences 4 --width 128 --height 128"
   "textured|--scene textured --methods white,sobol,hbo19,stbn,fast,sort-retarget,sort-grid-adaptive,sort-cycle,sort-cycle:without=sobol-jitter --camera static,pan:1 --bounces 1,8 --sequences 4 --width 128 --height 128"
 )
 # name | file in the run's output | name under docs/figures/

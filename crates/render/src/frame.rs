@@ -13,23 +13,31 @@ use blueshift_permute::{SortParams, mask_offset};
 impl Renderer {
     /// The path tracer's push constants for the next frame (camera, view window, method).
     pub fn trace_params(&self) -> TraceParams {
-        let inputs = TraceInputs {
+        crate::trace_params::trace_params(
+            &self.recipes.get(self.view_state()).trace,
+            &self.trace_inputs(),
+        )
+    }
+
+    fn trace_inputs(&self) -> TraceInputs<'_> {
+        TraceInputs {
             cfg: &self.cfg,
             screen: &self.screen,
             assets: &self.assets,
             camera: &self.camera,
             view_offset: self.view_offset,
             frame: self.frame,
-        };
-        crate::trace_params::trace_params(&self.recipes.get(self.view_state()).trace, &inputs)
+        }
     }
 
-    /// The view state of the next frame.
+    /// The view state of the next frame: still, or moving slowly or not from the last frame's
+    /// view (`speed.rs`).
     pub(crate) fn view_state(&self) -> ViewState {
-        if self.moving() {
-            ViewState::Moving
-        } else {
-            ViewState::Still
+        let now = || crate::trace_params::view_params(&self.trace_inputs());
+        match self.last_view {
+            _ if !self.moving() => ViewState::Still,
+            Some(before) if self.speed.slow(&before, &now()) => ViewState::Slow,
+            _ => ViewState::Moving,
         }
     }
 
@@ -69,6 +77,7 @@ impl Renderer {
             self.record_pass(*pass, &recipe, &tp, sort.as_ref())?;
         }
         self.submit_slot(self.frame, times)?;
+        self.last_view = Some(motion_params(&tp, &self.screen));
         if recipe.swap_seeds {
             self.res.swap_seeds();
         }

@@ -1,5 +1,6 @@
 //! The methods Blueshift compares: baselines, and the seed-permutation methods as one
 //! specification ([`Permutation`]) with named presets.
+use crate::recipe::ViewState;
 use blueshift_sampling::Sampler;
 
 pub use crate::permutation::{
@@ -356,34 +357,40 @@ impl Method {
         }
     }
 
-    /// Whether the trace reads the seeds of a view that is `moving` or not, at `bounces`, in a
-    /// scene with textures or not. Not where the mask drives every dimension a path draws
-    /// (direct light with the first vertex from the mask, `mask=vertex` moving) and no pixel
+    /// Whether the trace reads the seeds in view state `view`, at `bounces`, in a scene with
+    /// textures or not. Not where the mask drives every dimension a path draws (direct light
+    /// with the first vertex from the mask, `mask=vertex` moving, or the volume) and no pixel
     /// takes the seeds' jitter (no textures): a sort there would rank seeds nobody uses, so
     /// the frame skips it and costs what the mask's frame costs.
-    pub fn reads_seeds(self, moving: bool, bounces: u32, textured: bool) -> bool {
+    pub fn reads_seeds(self, view: ViewState, bounces: u32, textured: bool) -> bool {
         use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_SEED_JITTER_ON_TEXTURES};
+        let moving = view != ViewState::Still;
         let whole_vertex = self.mask_dims(moving) == (1 << MASK_DIMS) - 1;
         let seed_jitter =
             textured && self.jitter_flags(moving) & TRACE_FLAG_SEED_JITTER_ON_TEXTURES != 0;
         (!whole_vertex || bounces > 1 || seed_jitter)
-            && !self.volume_vertex(moving, bounces, textured)
+            && !self.volume_vertex(view, bounces, textured)
     }
 
-    /// Whether the frame of a view that is `moving` or not, at `bounces`, in a scene with
-    /// textures or not, takes the camera jitter and the whole first vertex from the
-    /// spatio-temporal volume (`MASK_MODE_SPATIOTEMPORAL`, the slices the point cycle sorts
-    /// against): a still `mask=vertex` point cycle in direct light without textures. A path
-    /// draws nothing else there, and the volume is blue in each frame and along each pixel's
-    /// frames: it beats the sorted seeds on both axes (docs/results.md), so the trace reads no
-    /// seed and the frame skips the sort. With textures the seeds' sorted light sample and the
-    /// mask's Sobol walk accumulate better than the volume.
-    pub fn volume_vertex(self, moving: bool, bounces: u32, textured: bool) -> bool {
-        !moving
-            && bounces <= 1
+    /// Whether the frame in view state `view`, at `bounces`, in a scene with textures or not,
+    /// takes the camera jitter and the whole first vertex from the spatio-temporal volume
+    /// (`MASK_MODE_SPATIOTEMPORAL`, the slices the point cycle sorts against): a `mask=vertex`
+    /// point cycle in direct light without textures, with a still view or a slow one
+    /// ([`ViewState::Slow`]). A path draws nothing else there, and the volume is blue in each
+    /// frame and along each pixel's frames: still it beats the sorted seeds on both axes, and
+    /// moving slowly the 2D mask after TAA (docs/results.md), so the trace reads no seed and
+    /// the frame skips the sort. With textures the seeds' sorted light sample and the mask's
+    /// Sobol walk accumulate better than the volume; faster, the 2D mask wins on both axes.
+    pub fn volume_vertex(self, view: ViewState, bounces: u32, textured: bool) -> bool {
+        let rule = match view {
+            ViewState::Still => Without::StillVolume,
+            ViewState::Slow => Without::SlowVolume,
+            ViewState::Moving => return false,
+        };
+        bounces <= 1
             && !textured
             && self.has(|p| p.points == Points::Cycle && p.mask == MaskDims::Vertex)
-            && self.keeps(Without::StillVolume)
+            && self.keeps(rule)
     }
 
     /// Whether a moving view's point cycle ranks the seeds by their next light sample

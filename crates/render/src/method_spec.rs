@@ -23,6 +23,7 @@ const FIELDS: [(&str, &[&str]); 9] = [
             "texture-jitter",
             "sobol-jitter",
             "still-volume",
+            "slow-volume",
         ],
     ),
 ];
@@ -86,6 +87,7 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
                 Without::TextureJitter,
                 Without::SobolJitter,
                 Without::StillVolume,
+                Without::SlowVolume,
             ][i]
         }
     }
@@ -122,7 +124,8 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
         Without::SampleKeys => (p.points != Points::Cycle).then_some("points=cycle"),
         Without::TextureJitter | Without::SobolJitter => (p.mask == MaskDims::None)
             .then_some("a mask that drives the jitter (mask other than none)"),
-        Without::StillVolume => (p.points != Points::Cycle || p.mask != MaskDims::Vertex)
+        Without::StillVolume | Without::SlowVolume => (p.points != Points::Cycle
+            || p.mask != MaskDims::Vertex)
             .then_some("points=cycle and mask=vertex"),
     };
     if let Some(needs) = needs {
@@ -289,6 +292,7 @@ mod tests {
             "texture-jitter",
             "sobol-jitter",
             "still-volume",
+            "slow-volume",
         ] {
             let form = format!("sort-cycle:without={rule}");
             let a: Method = form.parse().expect("valid");

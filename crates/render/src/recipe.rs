@@ -115,7 +115,11 @@ pub(crate) enum Pass {
 pub enum ViewState {
     /// The frame sees the scene from the view of the frame before (or is a sequence's first).
     Still,
-    /// The frame sees the scene from another view than the frame before.
+    /// The frame sees the scene from another view than the frame before, whose image moved
+    /// less than [`crate::speed::SLOW_VIEW_PX`] (`speed.rs`): a moving view for every rule but
+    /// [`Method::volume_vertex`].
+    Slow,
+    /// The frame sees the scene from another view than the frame before, and not slowly.
     Moving,
 }
 
@@ -144,6 +148,7 @@ pub(crate) struct FrameRecipe {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Recipes {
     still: FrameRecipe,
+    slow: FrameRecipe,
     moving: FrameRecipe,
 }
 
@@ -153,11 +158,12 @@ impl Recipes {
     pub fn new(cfg: &RenderConfig, textured: bool) -> Self {
         Self {
             still: recipe(cfg, ViewState::Still, textured),
+            slow: recipe(cfg, ViewState::Slow, textured),
             moving: recipe(cfg, ViewState::Moving, textured),
         }
     }
 
-    /// The recipe of either view state, for the fields that do not depend on it (state to
+    /// The recipe of any view state, for the fields that do not depend on it (state to
     /// make, seed swaps, the pairs gate).
     pub fn base(&self) -> &FrameRecipe {
         &self.still
@@ -166,6 +172,7 @@ impl Recipes {
     pub fn get(&self, view: ViewState) -> &FrameRecipe {
         match view {
             ViewState::Still => &self.still,
+            ViewState::Slow => &self.slow,
             ViewState::Moving => &self.moving,
         }
     }
@@ -175,8 +182,8 @@ impl Recipes {
 /// not (`textured`).
 pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> FrameRecipe {
     let m = cfg.method;
-    let moving = view == ViewState::Moving;
-    let trace = trace_plan(cfg, moving, textured);
+    let moving = view != ViewState::Still;
+    let trace = trace_plan(cfg, view, textured);
     // No sort where the trace reads no seed. The point cycle's history then keeps the slots
     // of the last sorted frames: each holds the same seeds per block, so the first still
     // frame's sort permutes them as ever, ranked by older keys for one cycle.
@@ -254,12 +261,13 @@ pub(crate) fn recipe(cfg: &RenderConfig, view: ViewState, textured: bool) -> Fra
     }
 }
 
-/// The trace pass's flags, mask mode and mask for configuration `cfg`, a view that is
-/// `moving` or not and a scene with textures or not.
-fn trace_plan(cfg: &RenderConfig, moving: bool, textured: bool) -> TracePlan {
+/// The trace pass's flags, mask mode and mask for configuration `cfg`, view state `view` and
+/// a scene with textures or not.
+fn trace_plan(cfg: &RenderConfig, view: ViewState, textured: bool) -> TracePlan {
     let m = cfg.method;
-    let no_seeds = !m.reads_seeds(moving, cfg.bounces, textured);
-    if m.volume_vertex(moving, cfg.bounces, textured) {
+    let moving = view != ViewState::Still;
+    let no_seeds = !m.reads_seeds(view, cfg.bounces, textured);
+    if m.volume_vertex(view, cfg.bounces, textured) {
         use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_RECORD_PRIMARY};
         return TracePlan {
             flags: method_flags(cfg)
