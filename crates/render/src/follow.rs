@@ -66,16 +66,7 @@ mod tests {
             up: Vec3::Y,
             yfov: 45f32.to_radians(),
         };
-        let b = cam.basis(128.0 / 96.0);
-        MotionParams {
-            cam_origin: b.position,
-            cam_forward: b.forward,
-            cam_right: b.right,
-            cam_up: b.up,
-            view_offset: offset.into(),
-            view_size: glam::Vec2::new(128.0, 96.0),
-            ..Default::default()
-        }
+        crate::speed::test_view(&cam, offset)
     }
 
     fn at(v: &MotionParams, p: Vec3) -> DVec2 {

@@ -90,6 +90,21 @@ impl ViewSpeed {
     }
 }
 
+/// The view of `cam` in a 128x96 window shifted by `offset` pixels: the tests' views.
+#[cfg(test)]
+pub(crate) fn test_view(cam: &blueshift_scene::Camera, offset: (f32, f32)) -> MotionParams {
+    let b = cam.basis(128.0 / 96.0);
+    MotionParams {
+        cam_origin: b.position,
+        cam_forward: b.forward,
+        cam_right: b.right,
+        cam_up: b.up,
+        view_offset: offset.into(),
+        view_size: Vec2::new(128.0, 96.0),
+        ..Default::default()
+    }
+}
+
 #[cfg(test)]
 #[path = "speed_tests.rs"]
 mod tests;

@@ -1,3 +1,4 @@
+use super::test_view as view;
 use super::*;
 use crate::camera_path::fit as camera_fit;
 use blueshift_scene::{Aabb, Camera};
@@ -41,20 +42,6 @@ fn base() -> Camera {
         target: Vec3::new(0.0, 1.0, 0.0),
         up: Vec3::Y,
         yfov: 45f32.to_radians(),
-    }
-}
-
-/// The view of `cam` in a 128x96 window shifted by `offset` pixels.
-fn view(cam: &Camera, offset: (f32, f32)) -> MotionParams {
-    let b = cam.basis(128.0 / 96.0);
-    MotionParams {
-        cam_origin: b.position,
-        cam_forward: b.forward,
-        cam_right: b.right,
-        cam_up: b.up,
-        view_offset: offset.into(),
-        view_size: Vec2::new(128.0, 96.0),
-        ..Default::default()
     }
 }
 
