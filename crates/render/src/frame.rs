@@ -51,10 +51,12 @@ impl Renderer {
             done.extend(self.complete_slot(previous)?);
         }
         self.make_state()?;
+        // The view state once per frame: it projects the speed estimate's points.
         let recipe = self.recipes.get(self.view_state()).clone();
-        let tp = self.trace_params();
+        let tp = crate::trace_params::trace_params(&recipe.trace, &self.trace_inputs());
+        let view = motion_params(&tp, &self.screen);
         if recipe.sort.is_some_and(|s| s.follow_target) {
-            self.follow.update(&motion_params(&tp, &self.screen));
+            self.follow.update(&view);
         }
         self.view_changed = false;
         self.slots[self.slot].rec.begin()?;
@@ -77,7 +79,7 @@ impl Renderer {
             self.record_pass(*pass, &recipe, &tp, sort.as_ref())?;
         }
         self.submit_slot(self.frame, times)?;
-        self.last_view = Some(motion_params(&tp, &self.screen));
+        self.last_view = Some(view);
         if recipe.swap_seeds {
             self.res.swap_seeds();
         }
