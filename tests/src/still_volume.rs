@@ -1,8 +1,9 @@
-//! A still or slowly moving `sort-cycle` frame in direct light on a scene without textures
-//! takes the camera jitter and the first vertex from the spatio-temporal volume
-//! (`Method::volume_vertex`): it renders `stbn`'s frames bit for bit (an independent recipe of
-//! the same volume), sorts nothing and leaves the seeds alone; moving faster, it renders
-//! `mask-r2`'s. At depth and with textures the default sorts.
+//! A still `sort-cycle` frame in direct light on a scene without textures takes the camera
+//! jitter and the first vertex from the spatio-temporal volume (`Method::volume_vertex`): it
+//! renders `stbn`'s frames bit for bit (an independent recipe of the same volume), sorts
+//! nothing and leaves the seeds alone. Moving, it renders the frames `stbn` renders on the
+//! motion volume (`Method::motion_volume`), and its ablation `mask-r2`'s. At depth and with
+//! textures the default sorts.
 use crate::Gpu;
 use blueshift_permute::CYCLE_FRAMES;
 use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
@@ -22,7 +23,7 @@ fn bits(px: Vec<[f32; 4]>) -> Vec<[u32; 4]> {
 }
 
 #[test]
-fn a_still_or_slow_direct_frame_renders_stbn_and_sorts_nothing() {
+fn a_direct_frame_without_textures_renders_a_volume_and_sorts_nothing() {
     let gpu = Gpu::new();
     let assets = MethodAssets::load(&default_assets_dir()).unwrap();
     let cornell = scene("cornell-box");
@@ -32,20 +33,31 @@ fn a_still_or_slow_direct_frame_renders_stbn_and_sorts_nothing() {
         bounces,
         ..RenderConfig::new(23, 17)
     };
+    // `stbn` on the motion volume: the moving default's frames by an independent recipe.
+    let motion_assets = MethodAssets {
+        stbn: assets.motion.clone(),
+        ..assets.clone()
+    };
+    assert_ne!(motion_assets.stbn, assets.stbn, "a volume of its own");
     for spp in [1, 3] {
-        let new = |m| Renderer::new(gpu.dev(), &cornell, &assets, cfg(m, spp, 1)).unwrap();
+        let on = |a, m| Renderer::new(gpu.dev(), &cornell, a, cfg(m, spp, 1)).unwrap();
+        let new = |m| on(&assets, m);
         let (mut default, mut stbn) = (new(Method::SORT_CYCLE), new(Method::Stbn));
-        // Frame for frame beside the default: its mask offsets depend on the frame.
+        // Frame for frame beside the default: their mask offsets and slices depend on the
+        // frame.
         let mut mask_r2 = new(Method::MaskR2);
-        // Without the slow view's rule: slowly moving, the 2D mask's frames.
-        let mut ablation = new("sort-cycle:without=slow-volume".parse().unwrap());
+        let mut stbn_motion = on(&motion_assets, Method::Stbn);
+        let mut ablation = new("sort-cycle:without=motion-volume".parse().unwrap());
         let init = default.initial_seeds().to_vec();
+        let others = |rs: [&mut Renderer; 4]| {
+            for r in rs {
+                r.render_frame().unwrap();
+            }
+        };
         // Past a point cycle, so a phase-keyed slice would repeat where stbn's does not.
         for frame in 0..CYCLE_FRAMES + 3 {
             assert!(!sorted(&mut default), "spp {spp}: frame {frame} sorted");
-            stbn.render_frame().unwrap();
-            mask_r2.render_frame().unwrap();
-            ablation.render_frame().unwrap();
+            others([&mut stbn, &mut mask_r2, &mut stbn_motion, &mut ablation]);
             let want = bits(stbn.read_estimate().unwrap());
             assert_eq!(
                 bits(default.read_estimate().unwrap()),
@@ -55,36 +67,33 @@ fn a_still_or_slow_direct_frame_renders_stbn_and_sorts_nothing() {
             assert_eq!(bits(ablation.read_estimate().unwrap()), want, "spp {spp}");
         }
         assert_eq!(default.read_seeds().unwrap(), init, "spp {spp}");
-        // Moving: a hundredth of the box per frame is a small fraction of a pixel here (slow,
-        // the volume's frames), one unit several pixels (the 2D mask's, `mask=vertex`); no
-        // sort either way.
+        // Moving (`mask=vertex`, no sort either): the motion volume's frames; without it, the
+        // 2D mask's.
         let mut cam = cornell.camera_or_default();
-        for (frame, step) in [0.01, 0.01, 0.01, 1.0, -1.0, 1.0].into_iter().enumerate() {
-            cam.position.x += step;
-            for r in [&mut default, &mut stbn, &mut mask_r2, &mut ablation] {
+        for frame in 0..4 {
+            cam.position.x += 0.01;
+            for r in [
+                &mut default,
+                &mut stbn,
+                &mut mask_r2,
+                &mut stbn_motion,
+                &mut ablation,
+            ] {
                 r.set_camera(cam);
             }
             assert!(
                 !sorted(&mut default),
                 "spp {spp}: moving frame {frame} sorted"
             );
-            stbn.render_frame().unwrap();
-            mask_r2.render_frame().unwrap();
-            ablation.render_frame().unwrap();
-            let mask_frame = bits(mask_r2.read_estimate().unwrap());
-            let (want, of) = if step.abs() < 0.1 {
-                (bits(stbn.read_estimate().unwrap()), "stbn")
-            } else {
-                (mask_frame.clone(), "mask-r2")
-            };
+            others([&mut stbn, &mut mask_r2, &mut stbn_motion, &mut ablation]);
             assert_eq!(
                 bits(default.read_estimate().unwrap()),
-                want,
-                "spp {spp}: moving frame {frame} (step {step}) is not {of}'s"
+                bits(stbn_motion.read_estimate().unwrap()),
+                "spp {spp}: moving frame {frame} is not the motion volume's"
             );
             assert_eq!(
                 bits(ablation.read_estimate().unwrap()),
-                mask_frame,
+                bits(mask_r2.read_estimate().unwrap()),
                 "spp {spp}: the ablation's moving frame {frame} is not mask-r2's"
             );
         }

@@ -25,6 +25,7 @@ fn manifest_lists_every_required_asset() {
         "masks/bn64.r16",
         "masks/bn128.r16",
         "masks/stbn64x32.r16",
+        "masks/stbn64x32_t0.5.r16",
         "masks/fast64x32_s1_a0.1.r16",
         "retarget/bn32_s24_18_r6.bin",
         "retarget/bn64_s48_36_r6.bin",

@@ -33,5 +33,5 @@ pub use formats::{
     Mask, RETARGET_HEADER_LEN, RETARGET_MAGIC, RETARGET_VERSION, RetargetTable, StbnVolume,
     load_mask, load_retarget, load_stbn, save_mask, save_retarget, save_stbn,
 };
-pub use method::{FAST_FILE, MethodAssets, default_assets_dir};
+pub use method::{FAST_FILE, MOTION_FILE, MethodAssets, default_assets_dir};
 pub use workspace::workspace_path;

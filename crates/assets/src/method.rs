@@ -7,6 +7,10 @@ use std::path::{Path, PathBuf};
 /// Where [`MethodAssets::load`] finds the FAST mask (`blueshift-tools fast` writes it).
 pub const FAST_FILE: &str = "masks/fast64x32_s1_a0.1.r16";
 
+/// Where [`MethodAssets::load`] finds the motion volume (`blueshift-tools mask --frames 32
+/// --sigma-t 0.5` writes it).
+pub const MOTION_FILE: &str = "masks/stbn64x32_t0.5.r16";
+
 /// Mask tile, retarget table and spatio-temporal mask, flattened for upload.
 #[derive(Debug, Clone)]
 pub struct MethodAssets {
@@ -25,6 +29,11 @@ pub struct MethodAssets {
     /// The FAST mask (optimised for a Gaussian sigma 1 and an EMA alpha 0.1), the same size as
     /// the spatio-temporal mask; empty when the asset is missing (then `fast` is unavailable).
     pub fast: Vec<u32>,
+    /// The motion volume: a spatio-temporal mask whose temporal energy reaches only the next
+    /// slices (sigma_t 0.5), so each slice is as blue as a 2D mask while consecutive slices
+    /// still differ; the same size as the spatio-temporal mask. `sort-cycle` draws a moving
+    /// view's first vertex from it. Empty when the asset is missing.
+    pub motion: Vec<u32>,
     /// HBO+19 key tables of one tile, one per sample count, ascending spp (may be empty:
     /// then the `hbo19` sampler is unavailable).
     pub keys: Vec<KeyTable>,
@@ -50,26 +59,43 @@ impl MethodAssets {
             64,
         )?;
         a.with_fast(&dir.join(FAST_FILE))?
+            .with_motion(&dir.join(MOTION_FILE))?
             .with_keys_dir(&dir.join("keys"))
     }
 
     /// Adds the FAST volume at `path` if it exists; it must match the spatio-temporal mask's
     /// size.
     pub fn with_fast(mut self, path: &Path) -> Result<Self> {
+        if let Some(v) = self.optional_volume(path, "FAST mask")? {
+            self.fast = v;
+        }
+        Ok(self)
+    }
+
+    /// Adds the motion volume at `path` if it exists; it must match the spatio-temporal
+    /// mask's size.
+    pub fn with_motion(mut self, path: &Path) -> Result<Self> {
+        if let Some(v) = self.optional_volume(path, "motion volume")? {
+            self.motion = v;
+        }
+        Ok(self)
+    }
+
+    /// The volume at `path` (`what` names it in errors), `None` if there is no such file.
+    fn optional_volume(&self, path: &Path, what: &str) -> Result<Option<Vec<u32>>> {
         if !path.is_file() {
-            return Ok(self);
+            return Ok(None);
         }
         let v = load_stbn(path, self.stbn_n as usize)?;
         if v.t as u32 != self.stbn_frames {
             return Err(AssetError::Mismatch(format!(
-                "FAST mask {} has {} slices, the spatio-temporal mask {}",
+                "{what} {} has {} slices, the spatio-temporal mask {}",
                 path.display(),
                 v.t,
                 self.stbn_frames
             )));
         }
-        self.fast = v.ranks.iter().map(|&r| r as u32).collect();
-        Ok(self)
+        Ok(Some(v.ranks.iter().map(|&r| r as u32).collect()))
     }
 
     /// Adds every `hbo19_*.bin` key table of `dir` (none if `dir` does not exist). The tables
@@ -156,6 +182,7 @@ impl MethodAssets {
             stbn_frames: v.t as u32,
             stbn: v.ranks.iter().map(|&r| r as u32).collect(),
             fast: Vec::new(),
+            motion: Vec::new(),
             keys: Vec::new(),
         })
     }

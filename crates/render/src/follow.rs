@@ -66,7 +66,16 @@ mod tests {
             up: Vec3::Y,
             yfov: 45f32.to_radians(),
         };
-        crate::speed::test_view(&cam, offset)
+        let b = cam.basis(128.0 / 96.0);
+        MotionParams {
+            cam_origin: b.position,
+            cam_forward: b.forward,
+            cam_right: b.right,
+            cam_up: b.up,
+            view_offset: offset.into(),
+            view_size: glam::Vec2::new(128.0, 96.0),
+            ..Default::default()
+        }
     }
 
     fn at(v: &MotionParams, p: Vec3) -> DVec2 {

@@ -30,14 +30,12 @@ impl Renderer {
         }
     }
 
-    /// The view state of the next frame: still, or moving slowly or not from the last frame's
-    /// view (`speed.rs`).
+    /// The view state of the next frame.
     pub(crate) fn view_state(&self) -> ViewState {
-        let now = || crate::trace_params::view_params(&self.trace_inputs());
-        match self.last_view {
-            _ if !self.moving() => ViewState::Still,
-            Some(before) if self.speed.slow(&before, &now()) => ViewState::Slow,
-            _ => ViewState::Moving,
+        if self.moving() {
+            ViewState::Moving
+        } else {
+            ViewState::Still
         }
     }
 
@@ -51,12 +49,10 @@ impl Renderer {
             done.extend(self.complete_slot(previous)?);
         }
         self.make_state()?;
-        // The view state once per frame: it projects the speed estimate's points.
         let recipe = self.recipes.get(self.view_state()).clone();
         let tp = crate::trace_params::trace_params(&recipe.trace, &self.trace_inputs());
-        let view = motion_params(&tp, &self.screen);
         if recipe.sort.is_some_and(|s| s.follow_target) {
-            self.follow.update(&view);
+            self.follow.update(&motion_params(&tp, &self.screen));
         }
         self.view_changed = false;
         self.slots[self.slot].rec.begin()?;
@@ -79,7 +75,6 @@ impl Renderer {
             self.record_pass(*pass, &recipe, &tp, sort.as_ref())?;
         }
         self.submit_slot(self.frame, times)?;
-        self.last_view = Some(view);
         if recipe.swap_seeds {
             self.res.swap_seeds();
         }

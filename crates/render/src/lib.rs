@@ -32,7 +32,6 @@ mod recipe;
 mod resources;
 mod seeds;
 mod slots;
-mod speed;
 mod stats;
 pub mod taa;
 mod taa_pass;
@@ -119,10 +118,6 @@ pub struct Renderer {
     taa: Option<taa_pass::TaaPass>,
     /// The image motion a moving sorting target follows (`target=follow`).
     follow: follow::FollowShift,
-    /// How fast the image moves between views (`ViewState::Slow`).
-    speed: speed::ViewSpeed,
-    /// The view of the last frame recorded in this sequence.
-    last_view: Option<blueshift_layout::motion::MotionParams>,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -225,8 +220,6 @@ impl Renderer {
             cycle: None,
             taa: None,
             follow: follow::FollowShift::new(scene.bounds().center()),
-            speed: speed::ViewSpeed::new(scene.triangles.iter().map(|t| t.positions)),
-            last_view: None,
             cfg,
         })
     }
@@ -299,7 +292,6 @@ impl Renderer {
             t.reset();
         }
         self.follow.reset();
-        self.last_view = None;
         Ok(())
     }
 

@@ -375,22 +375,32 @@ impl Method {
     /// Whether the frame in view state `view`, at `bounces`, in a scene with textures or not,
     /// takes the camera jitter and the whole first vertex from the spatio-temporal volume
     /// (`MASK_MODE_SPATIOTEMPORAL`, the slices the point cycle sorts against): a `mask=vertex`
-    /// point cycle in direct light without textures, with a still view or a slow one
-    /// ([`ViewState::Slow`]). A path draws nothing else there, and the volume is blue in each
-    /// frame and along each pixel's frames: still it beats the sorted seeds on both axes, and
-    /// moving slowly the 2D mask after TAA (docs/results.md), so the trace reads no seed and
+    /// point cycle in direct light without textures, with a still view. A path draws nothing
+    /// else there, and the volume is blue in each frame and along each pixel's frames: it
+    /// beats the sorted seeds on both axes (docs/results.md), so the trace reads no seed and
     /// the frame skips the sort. With textures the seeds' sorted light sample and the mask's
-    /// Sobol walk accumulate better than the volume; faster, the 2D mask wins on both axes.
+    /// Sobol walk accumulate better than the volume.
     pub fn volume_vertex(self, view: ViewState, bounces: u32, textured: bool) -> bool {
-        let rule = match view {
-            ViewState::Still => Without::StillVolume,
-            ViewState::Slow => Without::SlowVolume,
-            ViewState::Moving => return false,
-        };
-        bounces <= 1
+        view == ViewState::Still
+            && bounces <= 1
             && !textured
             && self.has(|p| p.points == Points::Cycle && p.mask == MaskDims::Vertex)
-            && self.keeps(rule)
+            && self.keeps(Without::StillVolume)
+    }
+
+    /// Whether a moving view at `bounces` takes the dimensions the mask drives
+    /// ([`Self::mask_dims`]) from the motion volume (`MASK_MODE_SPATIOTEMPORAL` on
+    /// `MethodAssets::motion`) rather than from the 2D mask shifted along R2: in direct light
+    /// a point cycle with a mask. The motion volume's slices are as blue as the 2D mask, and a
+    /// pixel's values in consecutive frames still differ, which a TAA's history averages: ahead
+    /// of the 2D mask after TAA at every speed, and of the still volume on both axes but one
+    /// (docs/experiments.md). At depth it loses the box's TAA (the sorted seeds behind it).
+    pub fn motion_volume(self, view: ViewState, bounces: u32) -> bool {
+        view == ViewState::Moving
+            && bounces <= 1
+            && self.cycles_points()
+            && self.mask_dims(true) != 0
+            && self.keeps(Without::MotionVolume)
     }
 
     /// Whether a moving view's point cycle ranks the seeds by their next light sample

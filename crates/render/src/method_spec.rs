@@ -23,7 +23,7 @@ const FIELDS: [(&str, &[&str]); 9] = [
             "texture-jitter",
             "sobol-jitter",
             "still-volume",
-            "slow-volume",
+            "motion-volume",
         ],
     ),
 ];
@@ -87,7 +87,7 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
                 Without::TextureJitter,
                 Without::SobolJitter,
                 Without::StillVolume,
-                Without::SlowVolume,
+                Without::MotionVolume,
             ][i]
         }
     }
@@ -124,9 +124,10 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
         Without::SampleKeys => (p.points != Points::Cycle).then_some("points=cycle"),
         Without::TextureJitter | Without::SobolJitter => (p.mask == MaskDims::None)
             .then_some("a mask that drives the jitter (mask other than none)"),
-        Without::StillVolume | Without::SlowVolume => (p.points != Points::Cycle
-            || p.mask != MaskDims::Vertex)
+        Without::StillVolume => (p.points != Points::Cycle || p.mask != MaskDims::Vertex)
             .then_some("points=cycle and mask=vertex"),
+        Without::MotionVolume => (p.points != Points::Cycle || p.mask == MaskDims::None)
+            .then_some("points=cycle and a mask (mask other than none)"),
     };
     if let Some(needs) = needs {
         return Err(format!(
@@ -292,7 +293,7 @@ mod tests {
             "texture-jitter",
             "sobol-jitter",
             "still-volume",
-            "slow-volume",
+            "motion-volume",
         ] {
             let form = format!("sort-cycle:without={rule}");
             let a: Method = form.parse().expect("valid");

@@ -136,10 +136,10 @@ pub enum Without {
     /// rules above) instead of taking the jitter and the first vertex from the
     /// spatio-temporal volume ([`crate::Method::volume_vertex`]).
     StillVolume,
-    /// A slowly moving view ([`crate::recipe::ViewState::Slow`]) in direct light on a scene
-    /// without textures takes the jitter and the first vertex from the shifted 2D mask, as a
-    /// fast one does, instead of the spatio-temporal volume ([`crate::Method::volume_vertex`]).
-    SlowVolume,
+    /// A moving view in direct light takes its mask dimensions from the 2D mask shifted along
+    /// R2 every frame (`mask-r2`'s), instead of the motion volume
+    /// ([`crate::Method::motion_volume`]).
+    MotionVolume,
 }
 
 /// A seed-permutation method: each field gates its own passes and shader code.

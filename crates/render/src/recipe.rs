@@ -28,6 +28,8 @@ pub(crate) enum MaskSource {
     Stbn,
     /// The FAST volume.
     Fast,
+    /// The motion volume (a moving `sort-cycle`'s mask dimensions).
+    Motion,
 }
 
 /// The block grid and mask frame the sorting pass ranks against.
@@ -115,11 +117,7 @@ pub(crate) enum Pass {
 pub enum ViewState {
     /// The frame sees the scene from the view of the frame before (or is a sequence's first).
     Still,
-    /// The frame sees the scene from another view than the frame before, whose image moved
-    /// less than [`crate::speed::SLOW_VIEW_PX`] (`speed.rs`): a moving view for every rule but
-    /// [`Method::volume_vertex`].
-    Slow,
-    /// The frame sees the scene from another view than the frame before, and not slowly.
+    /// The frame sees the scene from another view than the frame before.
     Moving,
 }
 
@@ -148,7 +146,6 @@ pub(crate) struct FrameRecipe {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Recipes {
     still: FrameRecipe,
-    slow: FrameRecipe,
     moving: FrameRecipe,
 }
 
@@ -158,7 +155,6 @@ impl Recipes {
     pub fn new(cfg: &RenderConfig, textured: bool) -> Self {
         Self {
             still: recipe(cfg, ViewState::Still, textured),
-            slow: recipe(cfg, ViewState::Slow, textured),
             moving: recipe(cfg, ViewState::Moving, textured),
         }
     }
@@ -172,7 +168,6 @@ impl Recipes {
     pub fn get(&self, view: ViewState) -> &FrameRecipe {
         match view {
             ViewState::Still => &self.still,
-            ViewState::Slow => &self.slow,
             ViewState::Moving => &self.moving,
         }
     }
@@ -280,6 +275,15 @@ fn trace_plan(cfg: &RenderConfig, view: ViewState, textured: bool) -> TracePlan 
         };
     }
     let dims = m.mask_dims(moving);
+    if m.motion_volume(view, cfg.bounces) {
+        return TracePlan {
+            flags: method_flags(cfg) | dims << TRACE_FLAG_MASK_DIMS_SHIFT | m.jitter_flags(moving),
+            mask_mode: MASK_MODE_SPATIOTEMPORAL,
+            mask: MaskSource::Motion,
+            cycle_phase: m.cycles_points(),
+            no_seeds,
+        };
+    }
     let mask_mode = if dims != 0 {
         // Shifted while moving, rotated while still: see `MaskDims::Jitter`.
         if moving {

@@ -2,7 +2,7 @@ use super::*;
 use crate::method::{Grouping, Permutation, Points};
 use blueshift_layout::params::MASK_DIMS;
 
-const VIEWS: [ViewState; 3] = [ViewState::Still, ViewState::Slow, ViewState::Moving];
+const VIEWS: [ViewState; 2] = [ViewState::Still, ViewState::Moving];
 
 fn config(method: Method, block: Option<u32>) -> RenderConfig {
     RenderConfig {
@@ -21,10 +21,10 @@ fn every_method() -> Vec<(String, Method)> {
     named.chain(forms).collect()
 }
 
-/// Every valid form x {still, slow, moving} (and the block sizes that change the variant)
-/// decodes to a recipe whose passes come in dependency order, whose sort variant is a compiled
+/// Every valid form x {still, moving} (and the block sizes that change the variant) decodes
+/// to a recipe whose passes come in dependency order, whose sort variant is a compiled
 /// shader with exactly the inputs the passes make, and whose view-dependent rules are the
-/// documented ones; the fields that do not depend on the view are equal in every recipe.
+/// documented ones; the fields that do not depend on the view are equal in both recipes.
 #[test]
 fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
     let forms = Method::all_permutations();
@@ -36,9 +36,7 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
     for (name, m) in every_method() {
         for block in [None, Some(2), Some(8)] {
             let cfg = config(m, block);
-            let [still, slow, moving] = VIEWS.map(|v| recipe(&cfg, v, true));
-            // Textured: the one rule of a slow view (the volume) is off, so it moves.
-            assert_eq!(slow, moving, "{name}");
+            let [still, moving] = VIEWS.map(|v| recipe(&cfg, v, true));
             let same = |r: &FrameRecipe| {
                 (
                     r.reproject,
@@ -49,7 +47,7 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
                 )
             };
             assert_eq!(same(&still), same(&moving), "{name}");
-            for (view, r) in VIEWS.iter().zip([&still, &slow, &moving]) {
+            for (view, r) in VIEWS.iter().zip([&still, &moving]) {
                 let at = |p: fn(&Pass) -> bool| r.passes.iter().position(p);
                 let trace = at(|p| *p == Pass::Trace).expect("a trace pass");
                 assert_eq!(r.passes.first(), Some(&Pass::ClearStatus), "{name}");
@@ -83,7 +81,7 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
                 assert!(classify.or(per_block).is_none_or(|c| c < sort), "{name}");
                 assert!(!v.classes || r.surfaces, "{name}");
                 // The view-dependent rules, one by one.
-                let moves = *view != ViewState::Still;
+                let moves = *view == ViewState::Moving;
                 let blocks = moves && p.grouping == Grouping::StillSurfaces;
                 assert_eq!(per_block.is_some(), blocks, "{name} {view:?}");
                 assert_eq!(v.classes, m.edge_aware() && !blocks, "{name} {view:?}");
@@ -97,7 +95,7 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
             }
         }
     }
-    assert!(checked > 3 * 3 * 100, "{checked} recipes checked");
+    assert!(checked > 2 * 3 * 100, "{checked} recipes checked");
 }
 
 /// Every method whose samples are not a progressive sequence is salted per frame (else its
@@ -155,7 +153,7 @@ fn mask_dimensions_have_a_mask_mode() {
     let mut some = 0;
     for (name, m) in every_method() {
         for view in VIEWS {
-            let moving = view != ViewState::Still;
+            let moving = view == ViewState::Moving;
             let r = recipe(&config(m, None), view, true);
             let dims = m.mask_dims(moving);
             assert_eq!(
@@ -207,7 +205,7 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
         let name = format!("sort-cycle:without={rule}");
         let (other, same, changed) = match view {
             ViewState::Still => (ViewState::Moving, &moving, &still),
-            _ => (ViewState::Still, &still, &moving),
+            ViewState::Moving => (ViewState::Still, &still, &moving),
         };
         assert_eq!(
             &of(&name, other),
@@ -232,8 +230,8 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
 
 /// A frame sorts unless its trace reads no seed: in direct light, a moving view of a form that
 /// takes the first vertex from the mask where no pixel takes the seeds' jitter (it keeps the
-/// trace plan of the frame that sorts but for the sampler), and a still or slow view of the
-/// point cycle with that mask in a scene without textures (it takes the volume instead, tested
+/// trace plan of the frame that sorts but for the sampler), and a still view of the point
+/// cycle with that mask in a scene without textures (it takes the volume instead, tested
 /// below). Such a frame traces with the `white` sampler.
 #[test]
 fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
@@ -247,7 +245,7 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
                         ..config(m, None)
                     };
                     let r = recipe(&cfg, view, textured);
-                    let moving = view != ViewState::Still;
+                    let moving = view == ViewState::Moving;
                     let vertex = m
                         .permutation()
                         .is_some_and(|p| p.mask == crate::MaskDims::Vertex);
@@ -255,17 +253,13 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
                     let skips_moving =
                         m.sorts() && moving && vertex && bounces <= 1 && !seed_jitter;
                     let cycle = m.permutation().is_some_and(|p| p.points == Points::Cycle);
-                    let rule = match view {
-                        ViewState::Still => crate::Without::StillVolume,
-                        _ => crate::Without::SlowVolume,
-                    };
-                    let volume = cycle
+                    let skips_still = cycle
                         && vertex
-                        && view != ViewState::Moving
+                        && !moving
                         && bounces <= 1
                         && !textured
-                        && m.keeps(rule);
-                    let skips = skips_moving || volume;
+                        && m.keeps(crate::Without::StillVolume);
+                    let skips = skips_moving || skips_still;
                     assert_eq!(r.sort.is_none(), !m.sorts() || skips, "{name} b{bounces}");
                     assert_eq!(r.trace.no_seeds, skips, "{name} b{bounces}: white sampler");
                     if skips {
@@ -279,11 +273,19 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
                         ];
                         assert_eq!(r.passes, passes, "{name}: only the trace and the image");
                         let sorting = recipe(&RenderConfig { bounces: 2, ..cfg }, view, textured);
+                        // The moving frame's trace but for the sampler and the mask it
+                        // reads (the motion volume in direct light, tested below).
                         let own_sampler = TracePlan {
                             no_seeds: false,
+                            mask_mode: sorting.trace.mask_mode,
+                            mask: sorting.trace.mask,
                             ..r.trace
                         };
-                        assert_eq!(own_sampler == sorting.trace, !volume, "{name}: the trace");
+                        assert_eq!(
+                            own_sampler == sorting.trace,
+                            skips_moving,
+                            "{name}: the trace"
+                        );
                     }
                 }
             }
@@ -299,10 +301,9 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
 /// the volume's mode and buffer, every mask dimension, no seed-side rule (Sobol walk) and no
 /// sort; the frame time is the mask's. Its ablation keeps the sorted seeds,
 /// exactly the recipe the default runs where textures are (which only the volume rule tells
-/// apart from a scene without them, while still), and changes no moving frame. A slow view's
-/// frame is the still one; its ablation renders the fast view's.
+/// apart from a scene without them, while still), and changes no moving frame.
 #[test]
-fn a_still_or_slow_direct_frame_without_textures_takes_the_volume() {
+fn a_still_direct_frame_without_textures_takes_the_volume() {
     use blueshift_layout::params::{MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_SOBOL_JITTER};
     let of = |m: &str, view, bounces, textured| {
         let method = Method::parse_comparison(m).expect(m);
@@ -337,32 +338,16 @@ fn a_still_or_slow_direct_frame_without_textures_takes_the_volume() {
             of("sort-cycle", ViewState::Still, bounces, true),
             "b{bounces}: the ablation sorts as with textures"
         );
-        for view in [ViewState::Slow, ViewState::Moving] {
-            assert_eq!(
-                of(ablation, view, bounces, false),
-                of("sort-cycle", view, bounces, false),
-                "b{bounces}: the ablation changed a moving frame"
-            );
-        }
-        assert_eq!(of("sort-cycle", ViewState::Slow, bounces, false), r);
-        let slow_ablation = "sort-cycle:without=slow-volume";
         assert_eq!(
-            of(slow_ablation, ViewState::Slow, bounces, false),
+            of(ablation, ViewState::Moving, bounces, false),
             of("sort-cycle", ViewState::Moving, bounces, false),
-            "b{bounces}: the slow ablation moves as fast"
-        );
-        assert_eq!(
-            of(slow_ablation, ViewState::Still, bounces, false),
-            r,
-            "b{bounces}: the slow ablation changed a still frame"
+            "b{bounces}: the ablation changed a moving frame"
         );
     }
-    // Not at depth, not with textures, not moving fast: there the seeds are read.
+    // Not at depth, not with textures, not moving: there the seeds are read.
     for (view, bounces, textured) in [
         (ViewState::Still, 2, false),
         (ViewState::Still, 1, true),
-        (ViewState::Slow, 2, false),
-        (ViewState::Slow, 1, true),
         (ViewState::Moving, 1, false),
     ] {
         let r = of("sort-cycle", view, bounces, textured);
@@ -371,5 +356,87 @@ fn a_still_or_slow_direct_frame_without_textures_takes_the_volume() {
             MaskSource::Stbn,
             "{view:?} b{bounces} {textured}"
         );
+    }
+}
+
+/// A moving frame of the default in direct light reads its mask dimensions from the motion
+/// volume (the volume's mode, the motion buffer), with textures or without; the rest of its
+/// trace plan is the one its ablation runs on the 2D mask, `mask-r2`'s mode and buffer. At
+/// depth and with a still view the rule does not act, and the ablation changes nothing there.
+#[test]
+fn a_moving_direct_frame_takes_the_motion_volume() {
+    use blueshift_layout::params::{MASK_MODE_2D, MASK_MODE_SPATIOTEMPORAL};
+    let of = |m: &str, view, bounces, textured| {
+        let method = Method::parse_comparison(m).expect(m);
+        let cfg = RenderConfig {
+            bounces,
+            ..config(method, None)
+        };
+        recipe(&cfg, view, textured)
+    };
+    let ablation = "sort-cycle:without=motion-volume";
+    let mask_r2 = of("mask-r2", ViewState::Moving, 1, false).trace;
+    for bounces in [0, 1] {
+        for textured in [false, true] {
+            let at = format!("b{bounces} textured {textured}");
+            let r = of("sort-cycle", ViewState::Moving, bounces, textured);
+            assert_eq!(
+                (r.trace.mask_mode, r.trace.mask),
+                (MASK_MODE_SPATIOTEMPORAL, MaskSource::Motion),
+                "{at}"
+            );
+            let dims = r.trace.flags >> TRACE_FLAG_MASK_DIMS_SHIFT & ((1 << MASK_DIMS) - 1);
+            assert_eq!(dims, (1 << MASK_DIMS) - 1, "{at}: every mask dimension");
+            let a = of(ablation, ViewState::Moving, bounces, textured);
+            assert_eq!(
+                (a.trace.mask_mode, a.trace.mask),
+                (mask_r2.mask_mode, mask_r2.mask),
+                "{at}"
+            );
+            assert_eq!(
+                (a.trace.mask_mode, a.trace.mask),
+                (MASK_MODE_2D, MaskSource::Mask)
+            );
+            let as_ablation = TracePlan {
+                mask_mode: a.trace.mask_mode,
+                mask: a.trace.mask,
+                ..r.trace
+            };
+            assert_eq!(as_ablation, a.trace, "{at}: only the mask differs");
+            assert_eq!((r.sort, r.passes), (a.sort, a.passes), "{at}");
+            assert_eq!(
+                of(ablation, ViewState::Still, bounces, textured),
+                of("sort-cycle", ViewState::Still, bounces, textured),
+                "{at}: the ablation changed a still frame"
+            );
+        }
+    }
+    for bounces in [2, 8] {
+        assert_eq!(
+            of("sort-cycle", ViewState::Moving, bounces, false),
+            of(ablation, ViewState::Moving, bounces, false),
+            "b{bounces}: the rule acts at depth"
+        );
+    }
+    // Only the point cycle's forms take it; the mask methods keep their own masks.
+    for (name, m) in every_method() {
+        for bounces in [1, 8] {
+            let cfg = RenderConfig {
+                bounces,
+                ..config(m, None)
+            };
+            let r = recipe(&cfg, ViewState::Moving, false);
+            let takes = m.cycles_points()
+                && m.mask_dims(true) != 0
+                && bounces <= 1
+                && m.keeps(crate::Without::MotionVolume);
+            assert_eq!(
+                r.trace.mask == MaskSource::Motion,
+                takes,
+                "{name} b{bounces}"
+            );
+            let still = recipe(&cfg, ViewState::Still, false);
+            assert_ne!(still.trace.mask, MaskSource::Motion, "{name} b{bounces}");
+        }
     }
 }

@@ -69,6 +69,8 @@ pub(crate) struct Masks {
     pub stbn: Buffer,
     /// The FAST mask, when the asset exists.
     pub fast: Option<Buffer>,
+    /// The motion volume, when the asset exists.
+    pub motion: Option<Buffer>,
     /// The mask packed with the retarget table (`pack_mask_moves`), for sorting that
     /// retargets.
     pub mask_moves: Buffer,
@@ -92,6 +94,10 @@ impl Masks {
                 true => None,
                 false => Some(Buffer::upload(dev, "assets.fast", &assets.fast)?),
             },
+            motion: match assets.motion.is_empty() {
+                true => None,
+                false => Some(Buffer::upload(dev, "assets.motion", &assets.motion)?),
+            },
             mask_moves: Buffer::upload(dev, "assets.mask_moves", &moves)?,
         })
     }
@@ -103,6 +109,7 @@ impl Masks {
             MaskSource::MaskMoves => &self.mask_moves,
             MaskSource::Stbn => &self.stbn,
             MaskSource::Fast => self.fast.as_ref().ok_or_else(trace_params::no_fast)?,
+            MaskSource::Motion => self.motion.as_ref().ok_or_else(trace_params::no_motion)?,
         })
     }
 }

@@ -99,6 +99,13 @@ pub(crate) fn no_fast() -> RenderError {
     )))
 }
 
+pub(crate) fn no_motion() -> RenderError {
+    RenderError::Asset(blueshift_assets::AssetError::Missing(format!(
+        "no motion volume ({}; `blueshift-tools assets` makes it)",
+        blueshift_assets::MOTION_FILE
+    )))
+}
+
 /// Per-frame mask offset of `mask-r2`: the R2 sequence scaled to the tile (rounded, which is
 /// fine here: no retarget table depends on it).
 pub fn r2_offset(frame: u64, n: u32) -> (u32, u32) {

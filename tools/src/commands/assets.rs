@@ -80,6 +80,14 @@ pub fn jobs(root: &str) -> Vec<Job> {
             root,
         ),
         job(
+            &format!(
+                "{vc} --size 64 --frames 32 --sigma-t 0.5 --seed 6433 --out {{root}}/masks/stbn64x32_t0.5.r16"
+            ),
+            6433,
+            &["masks/stbn64x32_t0.5.r16", "masks/stbn64x32_t0.5.png"],
+            root,
+        ),
+        job(
             "fast --size 64 --frames 32 --sigma 1 --temporal ema --alpha 0.1 --iterations 1024 \
              --rounds 64 --seed 2024 --out {root}/masks/fast64x32_s1_a0.1.r16",
             2024,
