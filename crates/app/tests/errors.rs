@@ -87,6 +87,49 @@ fn fast_without_its_mask_names_the_tool() {
     c.expect_error(&o, &["unknown method 'fast'", "presets: white"]);
 }
 
+#[test]
+fn the_default_without_its_motion_volume_names_the_asset() {
+    let c = Case::new();
+    let src = assets();
+    let dir = c.path("assets-without-motion");
+    for f in [
+        "masks/bn64.r16",
+        "masks/stbn64x32.r16",
+        "retarget/bn64_s48_36_r6.bin",
+    ] {
+        let to = dir.join(f);
+        std::fs::create_dir_all(to.parent().expect("parent")).expect("mkdir");
+        std::fs::copy(src.join(f), &to).expect("copy asset");
+    }
+    let a = dir.to_str().expect("utf-8");
+    // Refused when the renderer is made, though a still view never reads it (the default
+    // reads it in direct light).
+    let out = c.out();
+    let out = out.to_str().expect("utf-8");
+    let direct = |method: &str| {
+        let args = ["render", "--out", out, "--width", "8", "--height", "8"];
+        let more = [
+            "--frames",
+            "1",
+            "--bounces",
+            "1",
+            "--assets",
+            a,
+            "--method",
+            method,
+        ];
+        c.run(&[&args[..], &more[..]].concat(), &[])
+    };
+    c.expect_error(
+        &direct("sort-cycle"),
+        &["no motion volume", "masks/stbn64x32_t0.5.r16"],
+    );
+    // The form that does not read it renders.
+    let o = direct("sort-cycle:without=motion-volume");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "stderr:\n{stderr}");
+}
+
 /// A FIFO where a file is expected (environment map, camera path, mask asset) is refused
 /// before it is opened: opening it would block until a writer appears.
 #[test]

@@ -181,7 +181,7 @@ impl Renderer {
             Buffer::upload(dev, "frame.seeds.a", &initial)?,
             Buffer::upload(dev, "frame.seeds.b", &initial)?,
         ];
-        Ok(Self {
+        let renderer = Self {
             dev: dev.clone(),
             recipes: Recipes::new(&cfg, scene_images.textured),
             screen,
@@ -221,7 +221,9 @@ impl Renderer {
             taa: None,
             follow: follow::FollowShift::new(scene.bounds().center()),
             cfg,
-        })
+        };
+        renderer.res.masks.check(&renderer.recipes)?;
+        Ok(renderer)
     }
 
     pub fn config(&self) -> &RenderConfig {
@@ -303,8 +305,10 @@ impl Renderer {
             block: self.cfg.block.filter(|_| method.fixed_block().is_none()),
             ..self.cfg.clone()
         };
+        let recipes = Recipes::new(&cfg, self.res.images.textured);
+        self.res.masks.check(&recipes)?;
         self.initial_seeds = seeds_of(&cfg, &self.screen, &self.assets)?;
-        self.recipes = Recipes::new(&cfg, self.res.images.textured);
+        self.recipes = recipes;
         self.cfg = cfg;
         self.reset()
     }

@@ -165,6 +165,13 @@ impl Recipes {
         &self.still
     }
 
+    /// Every mask buffer a frame of these recipes reads.
+    pub fn masks(&self) -> impl Iterator<Item = MaskSource> + '_ {
+        [&self.still, &self.moving]
+            .into_iter()
+            .flat_map(|r| std::iter::once(r.trace.mask).chain(r.sort.map(|s| s.mask)))
+    }
+
     pub fn get(&self, view: ViewState) -> &FrameRecipe {
         match view {
             ViewState::Still => &self.still,

@@ -102,6 +102,12 @@ impl Masks {
         })
     }
 
+    /// Fails unless every mask the recipes read is here (an optional asset may be missing):
+    /// at creation, not at the first frame that reads it.
+    pub fn check(&self, recipes: &crate::recipe::Recipes) -> Result<()> {
+        recipes.masks().try_for_each(|m| self.get(m).map(|_| ()))
+    }
+
     /// The mask buffer `m` names.
     pub fn get(&self, m: MaskSource) -> Result<&Buffer> {
         Ok(match m {
