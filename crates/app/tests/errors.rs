@@ -63,11 +63,11 @@ fn missing_asset_and_camera_path_files() {
     );
 }
 
-#[test]
-fn fast_without_its_mask_names_the_tool() {
-    let c = Case::new();
+/// A directory of its own holding only the assets every method needs (no FAST mask, no
+/// motion volume, no key tables).
+fn required_assets(c: &Case, name: &str) -> std::path::PathBuf {
     let src = assets();
-    let dir = c.path("assets-without-fast");
+    let dir = c.path(name);
     for f in [
         "masks/bn64.r16",
         "masks/stbn64x32.r16",
@@ -77,6 +77,13 @@ fn fast_without_its_mask_names_the_tool() {
         std::fs::create_dir_all(to.parent().expect("parent")).expect("mkdir");
         std::fs::copy(src.join(f), &to).expect("copy asset");
     }
+    dir
+}
+
+#[test]
+fn fast_without_its_mask_names_the_tool() {
+    let c = Case::new();
+    let dir = required_assets(&c, "assets-without-fast");
     let a = dir.to_str().expect("utf-8");
     // `fast` is a comparison baseline: bench takes it, render does not.
     let mut args = vec!["bench", "--assets", a, "--method", "fast"];
@@ -90,17 +97,7 @@ fn fast_without_its_mask_names_the_tool() {
 #[test]
 fn the_default_without_its_motion_volume_names_the_asset() {
     let c = Case::new();
-    let src = assets();
-    let dir = c.path("assets-without-motion");
-    for f in [
-        "masks/bn64.r16",
-        "masks/stbn64x32.r16",
-        "retarget/bn64_s48_36_r6.bin",
-    ] {
-        let to = dir.join(f);
-        std::fs::create_dir_all(to.parent().expect("parent")).expect("mkdir");
-        std::fs::copy(src.join(f), &to).expect("copy asset");
-    }
+    let dir = required_assets(&c, "assets-without-motion");
     let a = dir.to_str().expect("utf-8");
     // Refused when the renderer is made, though a still view never reads it (the default
     // reads it in direct light).

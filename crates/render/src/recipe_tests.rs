@@ -13,6 +13,16 @@ fn config(method: Method, block: Option<u32>) -> RenderConfig {
 }
 
 /// Every named method and every spelled-out form the passes can run.
+/// The recipe of method `m` (a preset or a comparison method) at `bounces`.
+fn of(m: &str, view: ViewState, bounces: u32, textured: bool) -> FrameRecipe {
+    let method = Method::parse_comparison(m).expect(m);
+    let cfg = RenderConfig {
+        bounces,
+        ..config(method, None)
+    };
+    recipe(&cfg, view, textured)
+}
+
 fn every_method() -> Vec<(String, Method)> {
     let named = Method::named().map(|(n, m)| (n.to_string(), m));
     let forms = Method::all_permutations()
@@ -305,14 +315,6 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
 #[test]
 fn a_still_direct_frame_without_textures_takes_the_volume() {
     use blueshift_layout::params::{MASK_MODE_SPATIOTEMPORAL, TRACE_FLAG_SOBOL_JITTER};
-    let of = |m: &str, view, bounces, textured| {
-        let method = Method::parse_comparison(m).expect(m);
-        let cfg = RenderConfig {
-            bounces,
-            ..config(method, None)
-        };
-        recipe(&cfg, view, textured)
-    };
     let stbn = of("stbn", ViewState::Still, 1, false);
     for bounces in [0, 1] {
         let r = of("sort-cycle", ViewState::Still, bounces, false);
@@ -366,14 +368,6 @@ fn a_still_direct_frame_without_textures_takes_the_volume() {
 #[test]
 fn a_moving_direct_frame_takes_the_motion_volume() {
     use blueshift_layout::params::{MASK_MODE_2D, MASK_MODE_SPATIOTEMPORAL};
-    let of = |m: &str, view, bounces, textured| {
-        let method = Method::parse_comparison(m).expect(m);
-        let cfg = RenderConfig {
-            bounces,
-            ..config(method, None)
-        };
-        recipe(&cfg, view, textured)
-    };
     let ablation = "sort-cycle:without=motion-volume";
     let mask_r2 = of("mask-r2", ViewState::Moving, 1, false).trace;
     for bounces in [0, 1] {
