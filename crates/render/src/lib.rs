@@ -322,6 +322,8 @@ impl Renderer {
             ..self.cfg.clone()
         };
         cfg.validate(&self.dev)?;
+        let recipes = Recipes::new(&cfg, self.res.images.textured);
+        self.res.masks.check(&recipes)?;
         self.finish_frames()?;
         let (words, keys_spp) = key_words(&cfg, &self.assets)?;
         if keys_spp != self.res.masks.keys_spp {
@@ -329,7 +331,7 @@ impl Renderer {
             self.res.masks.keys = Buffer::upload(&self.dev, "assets.hbo19_keys", &words)?;
             self.res.masks.keys_spp = keys_spp;
         }
-        self.recipes = Recipes::new(&cfg, self.res.images.textured);
+        self.recipes = recipes;
         self.cfg = cfg;
         self.accumulated = 0;
         Ok(())
