@@ -282,16 +282,10 @@ fn trace_plan(cfg: &RenderConfig, view: ViewState, textured: bool) -> TracePlan 
         };
     }
     let dims = m.mask_dims(moving);
-    if m.motion_volume(view, cfg.bounces) {
-        return TracePlan {
-            flags: method_flags(cfg) | dims << TRACE_FLAG_MASK_DIMS_SHIFT | m.jitter_flags(moving),
-            mask_mode: MASK_MODE_SPATIOTEMPORAL,
-            mask: MaskSource::Motion,
-            cycle_phase: m.cycles_points(),
-            no_seeds,
-        };
-    }
-    let mask_mode = if dims != 0 {
+    let motion_volume = m.motion_volume(view, cfg.bounces);
+    let mask_mode = if motion_volume {
+        MASK_MODE_SPATIOTEMPORAL
+    } else if dims != 0 {
         // Shifted while moving, rotated while still: see `MaskDims::Jitter`.
         if moving {
             MASK_MODE_2D
@@ -307,6 +301,7 @@ fn trace_plan(cfg: &RenderConfig, view: ViewState, textured: bool) -> TracePlan 
         }
     };
     let mask = match m.mask_method() {
+        _ if motion_volume => MaskSource::Motion,
         Method::Stbn => MaskSource::Stbn,
         Method::Fast => MaskSource::Fast,
         _ => MaskSource::Mask,

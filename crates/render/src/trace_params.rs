@@ -2,7 +2,6 @@
 //! mask offsets of `mask-r2`.
 use crate::recipe::TracePlan;
 use crate::{MethodAssets, RenderConfig, RenderError};
-use blueshift_layout::motion::MotionParams;
 use blueshift_layout::params::{
     MASK_MODE_2D, MASK_MODE_ROTATE, MASK_MODE_SPATIOTEMPORAL, TraceParams,
 };
@@ -21,30 +20,11 @@ pub(crate) struct TraceInputs<'a> {
     pub frame: u64,
 }
 
-/// The frame's view (camera and window) as `project_previous` takes it: what its push
-/// constants say of the view (`motion_params` of them).
-pub(crate) fn view_params(i: &TraceInputs) -> MotionParams {
-    let c = i.cfg;
-    let (vw, vh) = c.view_size.unwrap_or((c.width, c.height));
-    let basis = i.camera.basis(vw as f32 / vh as f32);
-    MotionParams {
-        cam_origin: basis.position,
-        cam_forward: basis.forward,
-        cam_right: basis.right,
-        cam_up: basis.up,
-        view_offset: glam::Vec2::new(i.view_offset.0, i.view_offset.1),
-        view_size: glam::Vec2::new(vw as f32, vh as f32),
-        width: i.screen.width,
-        height: i.screen.height,
-        padded_width: i.screen.stride(),
-        padded_height: i.screen.padded_height(),
-    }
-}
-
 /// The path tracer's push constants for a frame (camera, view window, method).
 pub(crate) fn trace_params(trace: &TracePlan, i: &TraceInputs) -> TraceParams {
     let c = i.cfg;
-    let view = view_params(i);
+    let (vw, vh) = c.view_size.unwrap_or((c.width, c.height));
+    let basis = i.camera.basis(vw as f32 / vh as f32);
     let n = i.assets.n;
     // The mode alone says which mask and offsets: whichever method chose it.
     let (mask_size, mask_step, off) = match trace.mask_mode {
@@ -59,10 +39,10 @@ pub(crate) fn trace_params(trace: &TracePlan, i: &TraceInputs) -> TraceParams {
     };
     let off = add_mask_shift(off, sequence_mask_shift(c.sequence), mask_size);
     TraceParams {
-        cam_origin: view.cam_origin,
-        cam_forward: view.cam_forward,
-        cam_right: view.cam_right,
-        cam_up: view.cam_up,
+        cam_origin: basis.position,
+        cam_forward: basis.forward,
+        cam_right: basis.right,
+        cam_up: basis.up,
         width: c.width,
         height: c.height,
         stride: i.screen.stride(),
@@ -87,8 +67,8 @@ pub(crate) fn trace_params(trace: &TracePlan, i: &TraceInputs) -> TraceParams {
         mask_step,
         mask_offset_x: off.0,
         mask_offset_y: off.1,
-        view_offset: view.view_offset,
-        view_size: view.view_size,
+        view_offset: glam::Vec2::new(i.view_offset.0, i.view_offset.1),
+        view_size: glam::Vec2::new(vw as f32, vh as f32),
     }
 }
 
