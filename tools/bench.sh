@@ -29,9 +29,9 @@ if [ -z "$bin" ]; then
   bin="$CARGO_TARGET_DIR/release/blueshift"
 fi
 
-# method | camera path | width x height | bounces [| scene, default the Cornell box]. In direct
-# light `sort-cycle` sorts only on a scene with textures (on the box its trace reads no seed,
-# still or moving): the textured rows show what it costs there.
+# method | camera path | width x height | bounces [| scene, default the Cornell box].
+# `sort-cycle` sorts on the box only with a still view at depth (elsewhere its trace reads no
+# seed there); on a scene with textures it sorts: the textured rows show what it costs there.
 CONFIGS=(
   "sort-retarget|static|1920x1080|1"
   "sort-cycle|static|1920x1080|1"
@@ -44,6 +44,7 @@ CONFIGS=(
   "sort-retarget|static|256x256|8"
   "sort-cycle|static|256x256|8"
   "sort-cycle|strafe:2.5|256x256|8"
+  "sort-cycle|strafe:2.5|256x256|8|textured"
 )
 
 tmpfiles=()

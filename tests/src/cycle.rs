@@ -172,9 +172,12 @@ fn sort_cycle_seeds_stay_in_their_blocks() {
 fn a_moving_view_ranks_seeds_by_their_next_light_sample() {
     let gpu = Gpu::new();
     let (w, h) = (40u32, 24u32);
-    let screen = "sort-cycle:target=screen".parse().unwrap();
-    // Two bounces: in direct light a moving view of this untextured box skips the sort
-    // (`a_moving_view_in_direct_light_skips_the_sort`).
+    // Two bounces and the sort kept while moving: on this untextured box a moving view skips
+    // it (`a_moving_view_in_direct_light_skips_the_sort`, `still_volume.rs` at depth); with
+    // textures it sorts like this.
+    let screen = "sort-cycle:target=screen,without=white-depth"
+        .parse()
+        .unwrap();
     let (s, assets, mut r, stride) = box_sort_cycle(&gpu, screen, 2, (w, h));
     let samples = blueshift_sampling::Samples::default();
     let (n, frames) = (assets.stbn_n, assets.stbn_frames);
@@ -221,7 +224,7 @@ fn still_view_reuses_gbuffer_and_classes() {
     let assets = blueshift_render::MethodAssets::load(&default_assets_dir()).unwrap();
     let renderer = |method: Method| {
         let cfg = RenderConfig {
-            bounces: 2, // (in direct light a moving frame here would skip the sort)
+            bounces: 2,
             method,
             ..RenderConfig::new(29, 19)
         };
@@ -241,8 +244,14 @@ fn still_view_reuses_gbuffer_and_classes() {
     };
     let mut cam = s.camera_or_default();
     cam.position.x += 0.05;
-    let surfaces: Method = "sort-cycle:grouping=surfaces".parse().unwrap();
-    for (m, still_only) in [(surfaces, false), (Method::SORT_CYCLE, true)] {
+    // The moving sort kept (on this untextured box a moving frame of the default skips it,
+    // `still_volume.rs`; with textures it sorts like this).
+    let form = |f: &str| -> Method {
+        format!("sort-cycle:{f}without=white-depth")
+            .parse()
+            .unwrap()
+    };
+    for (m, still_only) in [(form("grouping=surfaces,"), false), (form(""), true)] {
         let mut r = renderer(m);
         assert!(ran(&mut r), "{m}: the first frame needs a G-buffer");
         assert!(

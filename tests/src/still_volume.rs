@@ -2,8 +2,8 @@
 //! jitter and the first vertex from the spatio-temporal volume (`Method::volume_vertex`): it
 //! renders `stbn`'s frames bit for bit (an independent recipe of the same volume), sorts
 //! nothing and leaves the seeds alone. Moving, it renders the frames `stbn` renders on the
-//! motion volume (`Method::motion_volume`), and its ablation `mask-r2`'s. At depth and with
-//! textures the default sorts.
+//! motion volume (`Method::motion_volume`), and its ablation `mask-r2`'s; at depth it sorts
+//! only while still (`Method::reads_seeds`). With textures the default sorts.
 use crate::Gpu;
 use blueshift_permute::CYCLE_FRAMES;
 use blueshift_render::{Method, MethodAssets, RenderConfig, Renderer, default_assets_dir};
@@ -99,7 +99,7 @@ fn a_direct_frame_without_textures_renders_a_volume_and_sorts_nothing() {
         }
         assert_eq!(default.read_seeds().unwrap(), init, "spp {spp}");
     }
-    // Where the seeds are read, the default sorts: at depth, and in direct light with
+    // Where the seeds are read, the default sorts: still at depth, and in direct light with
     // textures (the volume's jitter accumulates worse on them) or without the rule.
     let textured = scene("textured");
     let ablation = "sort-cycle:without=still-volume".parse().unwrap();
@@ -111,4 +111,41 @@ fn a_direct_frame_without_textures_renders_a_volume_and_sorts_nothing() {
         let mut r = Renderer::new(gpu.dev(), scene, &assets, cfg(method, 1, bounces)).unwrap();
         assert!(sorted(&mut r), "{method} b{bounces} did not sort");
     }
+}
+
+/// Moving at depth on a scene without textures the default reads no seed: it sorts nothing,
+/// and its seeds stay as the last still frame left them; `without=white-depth` sorts there,
+/// and both sort with a still view.
+#[test]
+fn a_moving_frame_at_depth_sorts_nothing() {
+    let gpu = Gpu::new();
+    let assets = MethodAssets::load(&default_assets_dir()).unwrap();
+    let cornell = scene("cornell-box");
+    let new = |m| {
+        let cfg = RenderConfig {
+            method: m,
+            bounces: 3,
+            ..RenderConfig::new(23, 17)
+        };
+        Renderer::new(gpu.dev(), &cornell, &assets, cfg).unwrap()
+    };
+    let mut default = new(Method::SORT_CYCLE);
+    let mut ablation = new("sort-cycle:without=white-depth".parse().unwrap());
+    assert!(
+        sorted(&mut default) && sorted(&mut ablation),
+        "still frames sort"
+    );
+    let after_still = default.read_seeds().unwrap();
+    let mut cam = cornell.camera_or_default();
+    for frame in 0..3 {
+        cam.position.x += 0.01;
+        default.set_camera(cam);
+        ablation.set_camera(cam);
+        assert!(!sorted(&mut default), "moving frame {frame} sorted");
+        assert!(sorted(&mut ablation), "the ablation's moving frame {frame}");
+        let px = bits(default.read_estimate().unwrap());
+        assert_ne!(px, bits(ablation.read_estimate().unwrap()), "frame {frame}");
+    }
+    assert_eq!(default.read_seeds().unwrap(), after_still);
+    assert!(sorted(&mut default), "a still view sorts again");
 }

@@ -358,17 +358,20 @@ impl Method {
     }
 
     /// Whether the trace reads the seeds in view state `view`, at `bounces`, in a scene with
-    /// textures or not. Not where the mask drives every dimension a path draws (direct light
-    /// with the first vertex from the mask, `mask=vertex` moving, or the volume) and no pixel
-    /// takes the seeds' jitter (no textures): a sort there would rank seeds nobody uses, so
-    /// the frame skips it and costs what the mask's frame costs.
+    /// textures or not. Not where the mask drives the first vertex (`mask=vertex` moving, or
+    /// the volume) and no pixel takes the seeds' jitter (no textures), in direct light or while
+    /// the view moves: a sort there would rank seeds no path uses, or at depth under motion
+    /// gain nothing it costs (the moving view's vertices past the first then take fresh white
+    /// noise, as the masks' do; docs/experiments.md), so the frame skips it and costs what the
+    /// mask's frame costs.
     pub fn reads_seeds(self, view: ViewState, bounces: u32, textured: bool) -> bool {
         use blueshift_layout::params::{MASK_DIMS, TRACE_FLAG_SEED_JITTER_ON_TEXTURES};
         let moving = view != ViewState::Still;
         let whole_vertex = self.mask_dims(moving) == (1 << MASK_DIMS) - 1;
         let seed_jitter =
             textured && self.jitter_flags(moving) & TRACE_FLAG_SEED_JITTER_ON_TEXTURES != 0;
-        (!whole_vertex || bounces > 1 || seed_jitter)
+        let white_depth = moving && self.keeps(Without::WhiteDepth);
+        (!whole_vertex || (bounces > 1 && !white_depth) || seed_jitter)
             && !self.volume_vertex(view, bounces, textured)
     }
 
@@ -388,16 +391,17 @@ impl Method {
             && self.keeps(Without::StillVolume)
     }
 
-    /// Whether a moving view at `bounces` takes the dimensions the mask drives
-    /// ([`Self::mask_dims`]) from the motion volume (`MASK_MODE_SPATIOTEMPORAL` on
-    /// `MethodAssets::motion`) rather than from the 2D mask shifted along R2: in direct light
-    /// a point cycle with a mask. The motion volume's slices are as blue as the 2D mask, and a
-    /// pixel's values in consecutive frames still differ, which a TAA's history averages: ahead
-    /// of the 2D mask after TAA at every speed, and of the still volume on both axes but one
-    /// (docs/experiments.md). At depth it loses the box's TAA (the sorted seeds behind it).
-    pub fn motion_volume(self, view: ViewState, bounces: u32) -> bool {
+    /// Whether a moving view at `bounces`, in a scene with textures or not, takes the
+    /// dimensions the mask drives ([`Self::mask_dims`]) from the motion volume
+    /// (`MASK_MODE_SPATIOTEMPORAL` on `MethodAssets::motion`) rather than from the 2D mask
+    /// shifted along R2: a point cycle with a mask, in direct light or where the frame reads no
+    /// seed. The motion volume's slices are as blue as the 2D mask, and a pixel's values in
+    /// consecutive frames still differ, which a TAA's history averages: ahead of the 2D mask
+    /// after TAA at every speed, and of the still volume on both axes but one
+    /// (docs/experiments.md). Behind the sorted seeds at depth it lost the box's TAA.
+    pub fn motion_volume(self, view: ViewState, bounces: u32, textured: bool) -> bool {
         view == ViewState::Moving
-            && bounces <= 1
+            && (bounces <= 1 || !self.reads_seeds(view, bounces, textured))
             && self.cycles_points()
             && self.mask_dims(true) != 0
             && self.keeps(Without::MotionVolume)

@@ -24,6 +24,7 @@ const FIELDS: [(&str, &[&str]); 9] = [
             "sobol-jitter",
             "still-volume",
             "motion-volume",
+            "white-depth",
         ],
     ),
 ];
@@ -88,6 +89,7 @@ fn set(p: &mut Permutation, field: &str, value: &str) -> Result<(), String> {
                 Without::SobolJitter,
                 Without::StillVolume,
                 Without::MotionVolume,
+                Without::WhiteDepth,
             ][i]
         }
     }
@@ -128,6 +130,7 @@ pub(crate) fn check(p: &Permutation) -> Result<(), String> {
             .then_some("points=cycle and mask=vertex"),
         Without::MotionVolume => (p.points != Points::Cycle || p.mask == MaskDims::None)
             .then_some("points=cycle and a mask (mask other than none)"),
+        Without::WhiteDepth => (p.mask != MaskDims::Vertex).then_some("mask=vertex"),
     };
     if let Some(needs) = needs {
         return Err(format!(
@@ -294,6 +297,7 @@ mod tests {
             "sobol-jitter",
             "still-volume",
             "motion-volume",
+            "white-depth",
         ] {
             let form = format!("sort-cycle:without={rule}");
             let a: Method = form.parse().expect("valid");

@@ -136,10 +136,13 @@ pub enum Without {
     /// rules above) instead of taking the jitter and the first vertex from the
     /// spatio-temporal volume ([`crate::Method::volume_vertex`]).
     StillVolume,
-    /// A moving view in direct light takes its mask dimensions from the 2D mask shifted along
-    /// R2 every frame (`mask-r2`'s), instead of the motion volume
-    /// ([`crate::Method::motion_volume`]).
+    /// A moving view takes its mask dimensions from the 2D mask shifted along R2 every frame
+    /// (`mask-r2`'s), instead of the motion volume ([`crate::Method::motion_volume`]).
     MotionVolume,
+    /// A moving view at depth on a scene without textures keeps the sorted seeds for the
+    /// vertices past the first, instead of fresh white noise and no sort
+    /// ([`crate::Method::reads_seeds`]).
+    WhiteDepth,
 }
 
 /// A seed-permutation method: each field gates its own passes and shader code.

@@ -282,7 +282,7 @@ fn trace_plan(cfg: &RenderConfig, view: ViewState, textured: bool) -> TracePlan 
         };
     }
     let dims = m.mask_dims(moving);
-    let motion_volume = m.motion_volume(view, cfg.bounces);
+    let motion_volume = m.motion_volume(view, cfg.bounces, textured);
     let mask_mode = if motion_volume {
         MASK_MODE_SPATIOTEMPORAL
     } else if dims != 0 {
@@ -306,8 +306,14 @@ fn trace_plan(cfg: &RenderConfig, view: ViewState, textured: bool) -> TracePlan 
         Method::Fast => MaskSource::Fast,
         _ => MaskSource::Mask,
     };
+    // Without seeds the deeper vertices take the white sampler's bits, salted by the frame
+    // (the cycle's index repeats).
+    let salt = if no_seeds { TRACE_FLAG_SALT_FRAME } else { 0 };
     TracePlan {
-        flags: method_flags(cfg) | dims << TRACE_FLAG_MASK_DIMS_SHIFT | m.jitter_flags(moving),
+        flags: method_flags(cfg)
+            | dims << TRACE_FLAG_MASK_DIMS_SHIFT
+            | m.jitter_flags(moving)
+            | salt,
         mask_mode,
         mask,
         cycle_phase: m.cycles_points(),

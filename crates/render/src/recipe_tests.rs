@@ -12,7 +12,6 @@ fn config(method: Method, block: Option<u32>) -> RenderConfig {
     }
 }
 
-/// Every named method and every spelled-out form the passes can run.
 /// The recipe of method `m` (a preset or a comparison method) at `bounces`.
 fn of(m: &str, view: ViewState, bounces: u32, textured: bool) -> FrameRecipe {
     let method = Method::parse_comparison(m).expect(m);
@@ -23,6 +22,7 @@ fn of(m: &str, view: ViewState, bounces: u32, textured: bool) -> FrameRecipe {
     recipe(&cfg, view, textured)
 }
 
+/// Every named method and every spelled-out form the passes can run.
 fn every_method() -> Vec<(String, Method)> {
     let named = Method::named().map(|(n, m)| (n.to_string(), m));
     let forms = Method::all_permutations()
@@ -64,7 +64,12 @@ fn every_form_decodes_to_a_consistent_recipe_in_both_view_states() {
                 assert_eq!(r.passes.last(), Some(&Pass::Readback), "{name}");
                 assert!(Some(trace) < at(|p| *p == Pass::Accumulate), "{name}");
                 let Some(s) = r.sort else {
-                    assert!(!m.sorts() && at(|p| *p == Pass::Sort).is_none(), "{name}");
+                    let reads = !r.trace.no_seeds;
+                    assert!(
+                        !(m.sorts() && reads),
+                        "{name}: reads seeds it does not sort"
+                    );
+                    assert!(at(|p| *p == Pass::Sort).is_none(), "{name}");
                     continue;
                 };
                 let p: Permutation = m.permutation().expect("a sorting method");
@@ -224,27 +229,35 @@ fn each_ablation_drops_one_rule_in_one_view_state() {
         );
         let r = of(&name, view);
         assert_ne!(&r, changed, "{name}: changed nothing");
-        let mut expected = sort(changed);
+        let mut expected = Some(sort(changed));
+        let mut flags = changed.trace.flags & !bit;
         if rule == "sample-keys" {
-            expected.sample_keys = false;
-            expected.variant.sample_keys = false;
+            expected = expected.map(|mut s| {
+                s.sample_keys = false;
+                s.variant.sample_keys = false;
+                s
+            });
+        } else if rule == "texture-jitter" {
+            // No pixel takes the seeds' jitter then: the moving frame reads no seed at all
+            // (`a_moving_frame_at_depth_reads_no_seed`).
+            expected = None;
+            flags |= TRACE_FLAG_SALT_FRAME;
+            assert_eq!(r.trace.mask, MaskSource::Motion, "{name}");
         }
-        assert_eq!(r.sort, Some(expected), "{name}: sort plan");
-        assert_eq!(
-            r.trace.flags,
-            changed.trace.flags & !bit,
-            "{name}: trace flags"
-        );
+        assert_eq!(r.sort, expected, "{name}: sort plan");
+        assert_eq!(r.trace.flags, flags, "{name}: trace flags");
     }
 }
 
-/// A frame sorts unless its trace reads no seed: in direct light, a moving view of a form that
-/// takes the first vertex from the mask where no pixel takes the seeds' jitter (it keeps the
-/// trace plan of the frame that sorts but for the sampler), and a still view of the point
-/// cycle with that mask in a scene without textures (it takes the volume instead, tested
-/// below). Such a frame traces with the `white` sampler.
+/// A frame sorts unless its trace reads no seed: a moving view of a form that takes the first
+/// vertex from the mask where no pixel takes the seeds' jitter, in direct light or at depth
+/// (`white-depth`; it keeps the trace plan of the frame that sorts but for the sampler, the
+/// frame salt and the mask it reads), and a still view of the point cycle with that mask in
+/// direct light in a scene without textures (it takes the volume instead, tested below). Such
+/// a frame traces with the `white` sampler salted by the frame.
 #[test]
 fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
+    use crate::Without;
     let mut skipped = 0;
     for (name, m) in every_method() {
         for bounces in [0, 1, 2, 8] {
@@ -259,44 +272,68 @@ fn a_frame_skips_the_sort_only_where_the_trace_reads_no_seed() {
                     let vertex = m
                         .permutation()
                         .is_some_and(|p| p.mask == crate::MaskDims::Vertex);
-                    let seed_jitter = textured && m.keeps(crate::Without::TextureJitter);
-                    let skips_moving =
-                        m.sorts() && moving && vertex && bounces <= 1 && !seed_jitter;
+                    let seed_jitter = textured && m.keeps(Without::TextureJitter);
+                    let skips_moving = m.sorts()
+                        && moving
+                        && vertex
+                        && (bounces <= 1 || m.keeps(Without::WhiteDepth))
+                        && !seed_jitter;
                     let cycle = m.permutation().is_some_and(|p| p.points == Points::Cycle);
                     let skips_still = cycle
                         && vertex
                         && !moving
                         && bounces <= 1
                         && !textured
-                        && m.keeps(crate::Without::StillVolume);
+                        && m.keeps(Without::StillVolume);
                     let skips = skips_moving || skips_still;
                     assert_eq!(r.sort.is_none(), !m.sorts() || skips, "{name} b{bounces}");
                     assert_eq!(r.trace.no_seeds, skips, "{name} b{bounces}: white sampler");
-                    if skips {
-                        skipped += 1;
-                        let passes = [
-                            Pass::ClearStatus,
-                            Pass::Trace,
-                            Pass::Accumulate,
-                            Pass::Tonemap,
-                            Pass::Readback,
-                        ];
-                        assert_eq!(r.passes, passes, "{name}: only the trace and the image");
-                        let sorting = recipe(&RenderConfig { bounces: 2, ..cfg }, view, textured);
-                        // The moving frame's trace but for the sampler and the mask it
-                        // reads (the motion volume in direct light, tested below).
-                        let own_sampler = TracePlan {
-                            no_seeds: false,
-                            mask_mode: sorting.trace.mask_mode,
-                            mask: sorting.trace.mask,
-                            ..r.trace
-                        };
-                        assert_eq!(
-                            own_sampler == sorting.trace,
-                            skips_moving,
-                            "{name}: the trace"
-                        );
+                    if !skips {
+                        continue;
                     }
+                    skipped += 1;
+                    let passes = [
+                        Pass::ClearStatus,
+                        Pass::Trace,
+                        Pass::Accumulate,
+                        Pass::Tonemap,
+                        Pass::Readback,
+                    ];
+                    assert_eq!(r.passes, passes, "{name}: only the trace and the image");
+                    let salt = TRACE_FLAG_SALT_FRAME;
+                    assert_eq!(r.trace.flags & salt, salt * u32::from(skips_moving));
+                    // The frame that sorts: at depth, with the rule switched off.
+                    let Some(p) = m.permutation().filter(|p| p.without == Without::Nothing) else {
+                        continue;
+                    };
+                    let ablation = Method::Permute(Permutation {
+                        without: Without::WhiteDepth,
+                        ..p
+                    });
+                    let sorting = recipe(
+                        &RenderConfig {
+                            bounces: 2,
+                            ..config(ablation, None)
+                        },
+                        view,
+                        textured,
+                    );
+                    assert!(
+                        sorting.sort.is_some(),
+                        "{name}: the ablation sorts at depth"
+                    );
+                    let own_sampler = TracePlan {
+                        no_seeds: false,
+                        flags: r.trace.flags & !salt,
+                        mask_mode: sorting.trace.mask_mode,
+                        mask: sorting.trace.mask,
+                        ..r.trace
+                    };
+                    assert_eq!(
+                        own_sampler == sorting.trace,
+                        skips_moving,
+                        "{name}: the trace"
+                    );
                 }
             }
         }
@@ -361,55 +398,61 @@ fn a_still_direct_frame_without_textures_takes_the_volume() {
     }
 }
 
-/// A moving frame of the default in direct light reads its mask dimensions from the motion
-/// volume (the volume's mode, the motion buffer), with textures or without; the rest of its
-/// trace plan is the one its ablation runs on the 2D mask, `mask-r2`'s mode and buffer. At
-/// depth and with a still view the rule does not act, and the ablation changes nothing there.
+/// A moving frame of the default in direct light, or at depth where it reads no seed, reads
+/// its mask dimensions from the motion volume (the volume's mode, the motion buffer); the rest
+/// of its trace plan is the one its ablation runs on the 2D mask, `mask-r2`'s mode and
+/// buffer. Behind the sorted seeds at depth (textures) and with a still view the rule does not
+/// act, and the ablation changes nothing there.
 #[test]
-fn a_moving_direct_frame_takes_the_motion_volume() {
+fn a_moving_frame_takes_the_motion_volume() {
     use blueshift_layout::params::{MASK_MODE_2D, MASK_MODE_SPATIOTEMPORAL};
     let ablation = "sort-cycle:without=motion-volume";
     let mask_r2 = of("mask-r2", ViewState::Moving, 1, false).trace;
-    for bounces in [0, 1] {
-        for textured in [false, true] {
-            let at = format!("b{bounces} textured {textured}");
-            let r = of("sort-cycle", ViewState::Moving, bounces, textured);
-            assert_eq!(
-                (r.trace.mask_mode, r.trace.mask),
-                (MASK_MODE_SPATIOTEMPORAL, MaskSource::Motion),
-                "{at}"
-            );
-            let dims = r.trace.flags >> TRACE_FLAG_MASK_DIMS_SHIFT & ((1 << MASK_DIMS) - 1);
-            assert_eq!(dims, (1 << MASK_DIMS) - 1, "{at}: every mask dimension");
-            let a = of(ablation, ViewState::Moving, bounces, textured);
-            assert_eq!(
-                (a.trace.mask_mode, a.trace.mask),
-                (mask_r2.mask_mode, mask_r2.mask),
-                "{at}"
-            );
-            assert_eq!(
-                (a.trace.mask_mode, a.trace.mask),
-                (MASK_MODE_2D, MaskSource::Mask)
-            );
-            let as_ablation = TracePlan {
-                mask_mode: a.trace.mask_mode,
-                mask: a.trace.mask,
-                ..r.trace
-            };
-            assert_eq!(as_ablation, a.trace, "{at}: only the mask differs");
-            assert_eq!((r.sort, r.passes), (a.sort, a.passes), "{at}");
-            assert_eq!(
-                of(ablation, ViewState::Still, bounces, textured),
-                of("sort-cycle", ViewState::Still, bounces, textured),
-                "{at}: the ablation changed a still frame"
-            );
-        }
+    for (bounces, textured) in [
+        (0, false),
+        (0, true),
+        (1, false),
+        (1, true),
+        (2, false),
+        (8, false),
+    ] {
+        let at = format!("b{bounces} textured {textured}");
+        let r = of("sort-cycle", ViewState::Moving, bounces, textured);
+        assert_eq!(
+            (r.trace.mask_mode, r.trace.mask),
+            (MASK_MODE_SPATIOTEMPORAL, MaskSource::Motion),
+            "{at}"
+        );
+        let dims = r.trace.flags >> TRACE_FLAG_MASK_DIMS_SHIFT & ((1 << MASK_DIMS) - 1);
+        assert_eq!(dims, (1 << MASK_DIMS) - 1, "{at}: every mask dimension");
+        let a = of(ablation, ViewState::Moving, bounces, textured);
+        assert_eq!(
+            (a.trace.mask_mode, a.trace.mask),
+            (mask_r2.mask_mode, mask_r2.mask),
+            "{at}"
+        );
+        assert_eq!(
+            (a.trace.mask_mode, a.trace.mask),
+            (MASK_MODE_2D, MaskSource::Mask)
+        );
+        let as_ablation = TracePlan {
+            mask_mode: a.trace.mask_mode,
+            mask: a.trace.mask,
+            ..r.trace
+        };
+        assert_eq!(as_ablation, a.trace, "{at}: only the mask differs");
+        assert_eq!((r.sort, r.passes), (a.sort, a.passes), "{at}");
+        assert_eq!(
+            of(ablation, ViewState::Still, bounces, textured),
+            of("sort-cycle", ViewState::Still, bounces, textured),
+            "{at}: the ablation changed a still frame"
+        );
     }
     for bounces in [2, 8] {
         assert_eq!(
-            of("sort-cycle", ViewState::Moving, bounces, false),
-            of(ablation, ViewState::Moving, bounces, false),
-            "b{bounces}: the rule acts at depth"
+            of("sort-cycle", ViewState::Moving, bounces, true),
+            of(ablation, ViewState::Moving, bounces, true),
+            "b{bounces}: the rule acts behind the sorted seeds"
         );
     }
     // Only the point cycle's forms take it; the mask methods keep their own masks.
@@ -420,9 +463,12 @@ fn a_moving_direct_frame_takes_the_motion_volume() {
                 ..config(m, None)
             };
             let r = recipe(&cfg, ViewState::Moving, false);
+            let vertex = m
+                .permutation()
+                .is_some_and(|p| p.mask == crate::MaskDims::Vertex);
             let takes = m.cycles_points()
                 && m.mask_dims(true) != 0
-                && bounces <= 1
+                && (bounces <= 1 || (vertex && m.keeps(crate::Without::WhiteDepth)))
                 && m.keeps(crate::Without::MotionVolume);
             assert_eq!(
                 r.trace.mask == MaskSource::Motion,
@@ -431,6 +477,42 @@ fn a_moving_direct_frame_takes_the_motion_volume() {
             );
             let still = recipe(&cfg, ViewState::Still, false);
             assert_ne!(still.trace.mask, MaskSource::Motion, "{name} b{bounces}");
+        }
+    }
+}
+
+/// A moving frame of the default at depth in a scene without textures reads no seed: no sort,
+/// the white sampler salted by the frame behind the motion volume, so its frames are `stbn`'s
+/// on that volume. Its ablation sorts (the moving frame of a scene with textures but for the
+/// seeds' jitter there) and changes no still frame, no direct-light frame and no textured one.
+#[test]
+fn a_moving_frame_at_depth_reads_no_seed() {
+    let ablation = "sort-cycle:without=white-depth";
+    for bounces in [2, 8] {
+        let r = of("sort-cycle", ViewState::Moving, bounces, false);
+        let stbn = of("stbn", ViewState::Moving, bounces, false);
+        assert_eq!(r.sort, None, "b{bounces}");
+        assert!(r.trace.no_seeds);
+        assert_eq!(r.passes, stbn.passes, "b{bounces}: the mask's passes");
+        assert_eq!(
+            r.trace.flags & TRACE_FLAG_SALT_FRAME,
+            stbn.trace.flags & TRACE_FLAG_SALT_FRAME
+        );
+        assert_eq!(r.trace.mask_mode, stbn.trace.mask_mode, "b{bounces}");
+        let a = of(ablation, ViewState::Moving, bounces, false);
+        let textured = of("sort-cycle", ViewState::Moving, bounces, true);
+        assert_eq!(a.sort, textured.sort, "b{bounces}: the ablation sorts");
+        assert!(!a.trace.no_seeds && a.trace.mask == MaskSource::Mask);
+        for (view, bounces, tex) in [
+            (ViewState::Still, bounces, false),
+            (ViewState::Moving, 1, false),
+            (ViewState::Moving, bounces, true),
+        ] {
+            assert_eq!(
+                of(ablation, view, bounces, tex),
+                of("sort-cycle", view, bounces, tex),
+                "{view:?} b{bounces} textured {tex}: the ablation acts there"
+            );
         }
     }
 }
