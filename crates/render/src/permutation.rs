@@ -97,11 +97,11 @@ pub enum MaskDims {
     Motion,
     /// [`MaskDims::Motion`], and while the view moves also the first vertex's light sample,
     /// so every dimension of the camera ray and the first vertex is the mask's (what `mask-r2`
-    /// draws there); deeper vertices stay the sorted seeds'. The sample keys, kept while the
-    /// view moves, then rank by a light sample no pixel takes (dropping the sort instead lost
-    /// 0.014 of TAA at 8 bounces: docs/experiments.md). `sort-cycle`'s: ahead of
-    /// [`MaskDims::Motion`] in every moving configuration of the motion tables, per frame and
-    /// after TAA (docs/results.md).
+    /// draws there); deeper vertices stay the sorted seeds' where the frame sorts (textures;
+    /// without them a moving frame reads no seed, [`Without::WhiteDepth`]). The sample keys,
+    /// kept while the view moves, then rank by a light sample no pixel takes. `sort-cycle`'s:
+    /// ahead of [`MaskDims::Motion`] in every moving configuration of the motion tables, per
+    /// frame and after TAA (docs/results.md).
     Vertex,
 }
 
@@ -112,8 +112,8 @@ pub enum Target {
     Screen,
     /// The spatio-temporal mask moves with the image (the scene centre's image motion), so a
     /// filter that follows the motion meets a surface point at one texel's temporally blue
-    /// values (only with [`Points::Cycle`]; `follow.rs`). `sort-cycle`'s: in the motion tables
-    /// (docs/results.md) ahead after TAA or within 0.01, level per frame.
+    /// values (only with [`Points::Cycle`]; `follow.rs`). `sort-cycle`'s: where a moving frame
+    /// sorts (textures) ahead after TAA at 8 bounces (docs/results.md), level per frame.
     Follow,
 }
 
