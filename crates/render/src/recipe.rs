@@ -358,3 +358,7 @@ fn method_flags(c: &RenderConfig) -> u32 {
 #[cfg(test)]
 #[path = "recipe_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "recipe_volume_tests.rs"]
+mod volume_tests;
