@@ -173,8 +173,7 @@ fn a_moving_view_ranks_seeds_by_their_next_light_sample() {
     let gpu = Gpu::new();
     let (w, h) = (40u32, 24u32);
     // Two bounces and the sort kept while moving: on this untextured box a moving view skips
-    // it (`a_moving_view_in_direct_light_skips_the_sort`, `still_volume.rs` at depth); with
-    // textures it sorts like this.
+    // it (`a_moving_view_without_seeds_skips_the_sort`); with textures it sorts like this.
     let screen = "sort-cycle:target=screen,without=white-depth"
         .parse()
         .unwrap();
@@ -432,17 +431,25 @@ fn sort_cycle_leaves_the_jitter_and_a_moving_first_bounce_to_the_mask() {
     );
 }
 
-/// In direct light on an untextured scene the trace of a moving `sort-cycle` frame reads no
-/// seed (the mask draws the jitter and the first vertex), so the frame runs no sort and the
-/// seeds stay where they were; the first still frame sorts again, and every block keeps its
-/// own seeds throughout. (The default's still frames there take the volume and do not sort
-/// either, `still_volume.rs`: its ablation sorts them, as the default does with textures.)
+/// On an untextured scene the trace of a moving `sort-cycle` frame reads no seed, in direct
+/// light (the mask draws the jitter and the first vertex) and at depth (white noise behind
+/// the motion volume), so the frame runs no sort and the seeds stay where they were; the first
+/// still frame sorts again, and every block keeps its own seeds throughout. (The default's
+/// still frames in direct light take the volume and do not sort either, `still_volume.rs`:
+/// its ablation sorts them, as the default does with textures.)
 #[test]
-fn a_moving_view_in_direct_light_skips_the_sort() {
+fn a_moving_view_without_seeds_skips_the_sort() {
     let gpu = Gpu::new();
     let (w, h) = (37u32, 21u32);
-    let method = "sort-cycle:without=still-volume".parse().unwrap();
-    let (s, _, mut r, stride) = box_sort_cycle(&gpu, method, 1, (w, h));
+    let still_sorts = "sort-cycle:without=still-volume".parse().unwrap();
+    for (method, bounces) in [(still_sorts, 1), (Method::SORT_CYCLE, 3)] {
+        moving_frames_skip_the_sort(&gpu, method, bounces, (w, h));
+    }
+}
+
+fn moving_frames_skip_the_sort(gpu: &Gpu, method: Method, bounces: u32, (w, h): (u32, u32)) {
+    let at = format!("{method} b{bounces}");
+    let (s, _, mut r, stride) = box_sort_cycle(gpu, method, bounces, (w, h));
     let init = r.initial_seeds().to_vec();
     let want = block_sets(&init, stride, w, h);
     let sorted = |r: &mut Renderer| {
@@ -450,32 +457,36 @@ fn a_moving_view_in_direct_light_skips_the_sort() {
         stats.passes.iter().any(|p| p.name == "sort_seeds")
     };
     for _ in 0..CYCLE_FRAMES + 1 {
-        assert!(sorted(&mut r), "a still frame skipped the sort");
+        assert!(sorted(&mut r), "{at}: a still frame skipped the sort");
     }
     let before = r.read_seeds().unwrap();
-    assert_ne!(before, init, "the still frames moved no seed");
+    assert_ne!(before, init, "{at}: the still frames moved no seed");
     let mut cam = s.camera_or_default();
     for frame in 0..2 * CYCLE_FRAMES {
         cam.position.x += 0.01;
         r.set_camera(cam);
-        assert!(!sorted(&mut r), "moving frame {frame} sorted");
-        assert_eq!(r.read_seeds().unwrap(), before, "moving frame {frame}");
+        assert!(!sorted(&mut r), "{at}: moving frame {frame} sorted");
+        assert_eq!(
+            r.read_seeds().unwrap(),
+            before,
+            "{at}: moving frame {frame}"
+        );
     }
     for frame in 0..2 * CYCLE_FRAMES {
         assert!(
             sorted(&mut r),
-            "still frame {frame} after the motion skipped the sort"
+            "{at}: still frame {frame} after the motion skipped the sort"
         );
         let seeds = r.read_seeds().unwrap();
         assert_eq!(
             block_sets(&seeds, stride, w, h),
             want,
-            "still frame {frame}"
+            "{at}: still frame {frame}"
         );
     }
     assert_ne!(
         r.read_seeds().unwrap(),
         before,
-        "the still view sorted nothing"
+        "{at}: the still view sorted nothing"
     );
 }

@@ -113,9 +113,9 @@ fn a_direct_frame_without_textures_renders_a_volume_and_sorts_nothing() {
     }
 }
 
-/// Moving at depth on a scene without textures the default reads no seed: it sorts nothing,
-/// and its seeds stay as the last still frame left them; `without=white-depth` sorts there,
-/// and both sort with a still view.
+/// Moving at depth on a scene without textures the default sorts nothing (its seeds stay
+/// put: `cycle.rs`, `a_moving_view_without_seeds_skips_the_sort`); `without=white-depth`
+/// sorts there and renders other frames, and both sort with a still view.
 #[test]
 fn a_moving_frame_at_depth_sorts_nothing() {
     let gpu = Gpu::new();
@@ -135,7 +135,6 @@ fn a_moving_frame_at_depth_sorts_nothing() {
         sorted(&mut default) && sorted(&mut ablation),
         "still frames sort"
     );
-    let after_still = default.read_seeds().unwrap();
     let mut cam = cornell.camera_or_default();
     for frame in 0..3 {
         cam.position.x += 0.01;
@@ -146,6 +145,4 @@ fn a_moving_frame_at_depth_sorts_nothing() {
         let px = bits(default.read_estimate().unwrap());
         assert_ne!(px, bits(ablation.read_estimate().unwrap()), "frame {frame}");
     }
-    assert_eq!(default.read_seeds().unwrap(), after_still);
-    assert!(sorted(&mut default), "a still view sorts again");
 }
